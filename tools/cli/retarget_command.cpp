@@ -1,0 +1,61 @@
+#include <cstdio>
+
+#include "tools/cli/commands.hpp"
+#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/retarget.hpp"
+
+namespace gr {
+
+namespace {
+
+int exit_code_for(RetargetStatus status) {
+  switch (status) {
+    case RetargetStatus::kCertified: return kExitSuccess;
+    case RetargetStatus::kNotCertified: return kExitIntersections;
+    case RetargetStatus::kNoValidShrink: return kExitNoValidShrink;
+    case RetargetStatus::kSolverFailure: return kExitSolverFailure;
+  }
+  return kExitInternalError;
+}
+
+}  // namespace
+
+void add_retarget_command(CLI::App& root, int& exit_code) {
+  auto options = std::make_shared<RetargetOptions>();
+  CLI::App* cmd = root.add_subcommand(
+      "retarget", "Refit a garment onto an avatar, then certify the written garment.");
+  cmd->add_option("--garment", options->inputs.garment, "Garment OBJ (the source garment)")
+      ->required();
+  cmd->add_option("--avatar", options->inputs.avatar, "Target avatar OBJ")->required();
+  cmd->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
+  auto* source = cmd->add_option("--source-skeleton", options->inputs.source_skeleton,
+                                 "Source skeleton OBJ (v joints, l bones)");
+  auto* target = cmd->add_option("--target-skeleton", options->inputs.target_skeleton,
+                                 "Target skeleton OBJ, same joints and bones as the source");
+  source->needs(target);
+  target->needs(source);
+  cmd->add_option("--skin-weights", options->inputs.skin_weights,
+                  "Avatar skin weights: one row per joint, one column per avatar vertex")
+      ->needs(source);
+  cmd->add_option("--no-fit", options->inputs.no_fit,
+                  "Garment vertex ids (0-based) whose faces hang free instead of fitting");
+  cmd->add_flag("--skirt", options->skirt, "Garment is a skirt: add a virtual bone between the legs");
+  cmd->add_option("--shrink", options->shrink_mode, "How to shrink the avatar")
+      ->check(CLI::IsMember({"levelset", "skeleton"}))
+      ->capture_default_str();
+  cmd->add_option("--quality", options->quality, "Speed against accuracy preset")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}))
+      ->capture_default_str();
+  cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");
+  cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
+  cmd->callback([options, &exit_code]() {
+    const RetargetResult result = run_retarget(*options);
+    std::printf("%s\n", result.message.c_str());
+    if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());
+    exit_code = exit_code_for(result.status);
+  });
+}
+
+}  // namespace gr

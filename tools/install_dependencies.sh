@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages garment-retarget builds with; does nothing when all are
+# present. Runs apt-get update once, only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build python3 python3-venv
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread
+  libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
+  catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "installing: ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

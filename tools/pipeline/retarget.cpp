@@ -1,0 +1,34 @@
+#include "tools/pipeline/retarget.hpp"
+
+#include <filesystem>
+
+#include "core/common/errors.hpp"
+
+namespace gr {
+
+namespace {
+
+void prepare_output_folder(const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec || !fs::is_directory(out_dir))
+    throw OutputError(out_dir + ": cannot create output folder" +
+                      (ec ? ": " + ec.message() : std::string()));
+}
+
+}  // namespace
+
+RetargetResult run_retarget(const RetargetOptions& options) {
+  const Scene scene = load_scene(options.inputs);
+  prepare_output_folder(options.out_dir);
+  RetargetResult result;
+  result.garment_path = (std::filesystem::path(options.out_dir) / "garment.obj").string();
+  copy_material_files(scene.garment_document, options.out_dir);
+  write_obj(result.garment_path, scene.garment_document, scene.garment_document.positions);
+  result.status = RetargetStatus::kNotCertified;
+  result.message = "inputs read and garment exported; solver stages not yet available";
+  return result;
+}
+
+}  // namespace gr

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+
+#include "tools/pipeline/scene.hpp"
+
+namespace gr {
+
+/// Everything `garment-retarget retarget` can be asked.
+struct RetargetOptions {
+  ScenePaths inputs;
+  std::string out_dir;
+  bool skirt = false;          ///< add a virtual bone between the legs for L_pos
+  std::string shrink_mode = "levelset";  ///< "levelset" or "skeleton"
+  std::string quality = "balanced";      ///< "fast", "balanced" or "accurate"
+  int threads = 0;             ///< 0: all cores
+  bool frames = false;         ///< write intermediate garment/avatar OBJs
+  bool quiet = false;
+};
+
+/// How a retarget run ended; the command line maps it to an exit code.
+enum class RetargetStatus { kCertified, kNotCertified, kNoValidShrink, kSolverFailure };
+
+struct RetargetResult {
+  RetargetStatus status = RetargetStatus::kSolverFailure;
+  std::string garment_path;      ///< the written garment, when one was written
+  std::string report_path;
+  std::string message;           ///< one line for the user
+};
+
+/// Runs the pipeline: read, normalize, shrink, inflate, fit, export, certify.
+/// @throw InputError for bad inputs, OutputError when out_dir cannot be written.
+RetargetResult run_retarget(const RetargetOptions& options);
+
+}  // namespace gr
