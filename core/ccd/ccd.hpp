@@ -1,0 +1,24 @@
+#pragma once
+
+#include "core/candidates/candidates.hpp"
+
+namespace gr {
+
+struct CcdOptions {
+  /// No pair may come closer than this fraction of its distance at the start of the
+  /// step (keeps steps from landing at zero distance), in (0, 1).
+  double min_separation_ratio = 0.1;
+  /// Absolute floor on the separation, normalized scene units.
+  double min_separation = 0.0;
+  /// Iteration budget per pair; when exhausted the pair's step is the last safe bound.
+  int max_iterations = 10000;
+};
+
+/// Largest fraction alpha in [0, 1] of the linear motion V0 → V1 (#V×3 stacked) such that
+/// no candidate pair comes closer than the minimum separation anywhere in [0, alpha].
+/// Conservative: never larger than the true time of contact. 0 when a pair starts at or
+/// below the separation and approaches.
+double max_step(const Candidates& swept_candidates, const Eigen::Ref<const MatrixX3d>& V0,
+                const Eigen::Ref<const MatrixX3d>& V1, const CcdOptions& options = {});
+
+}  // namespace gr

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <Eigen/SparseCore>
+
+#include "core/candidates/candidates.hpp"
+
+namespace gr {
+
+/// IPC barrier summed over a candidate set: sum of b(d^2, dhat^2) with
+/// b(x, xhat) = -(x - xhat)^2 ln(x / xhat) for 0 < x < xhat, 0 beyond, on squared
+/// distances; edge–edge pairs are multiplied by IPC's mollifier near parallel edges.
+/// Unweighted: the caller multiplies by w_contact.
+class BarrierPotential {
+ public:
+  /// @param dhat barrier support as a distance (not squared), normalized scene units.
+  /// @param rest_vertices stacked rest positions (#V×3), for the edge–edge mollifier's
+  ///        threshold (1e-3 times the product of the rest squared edge lengths).
+  BarrierPotential(double dhat, const Eigen::Ref<const MatrixX3d>& rest_vertices);
+
+  double dhat() const { return dhat_; }
+
+  /// Sum over candidates at V (#V×3). +inf when a pair is at zero distance.
+  double value(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
+  /// Gradient, 3#V, vertex-major (x0 y0 z0 x1 ...).
+  Eigen::VectorXd gradient(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
+  /// Hessian, 3#V×3#V; each pair's 12×12 block projected to PSD when `project_psd`.
+  Eigen::SparseMatrix<double> hessian(const Candidates& candidates,
+                                      const Eigen::Ref<const MatrixX3d>& V,
+                                      bool project_psd = true) const;
+  /// Smallest distance (not squared) over the candidates; +inf when there are none.
+  double minimum_distance(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
+
+ private:
+  double dhat_;
+  MatrixX3d rest_vertices_;
+};
+
+}  // namespace gr
