@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 namespace gr::test {
@@ -20,9 +22,11 @@ inline std::string project_file(const std::string& relative) {
   return (std::filesystem::path(GR_SOURCE_DIR) / relative).string();
 }
 
-/// A fresh, empty temporary folder for one test.
+/// A fresh, empty temporary folder for one test; per process, since CTest runs test
+/// cases in parallel processes.
 inline std::filesystem::path fresh_temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("gr_test_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("gr_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

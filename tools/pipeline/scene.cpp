@@ -1,6 +1,7 @@
 #include "tools/pipeline/scene.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -23,6 +24,24 @@ SimulationMesh load_surface(const std::string& path, const char* role, ObjDocume
   return sim;
 }
 
+/// The surface energy pairs the two faces of each edge: an edge with three or more faces
+/// has no such pair, so the garment must be an edge-manifold surface.
+void require_edge_manifold(const SimulationMesh& sim, const std::string& path) {
+  std::map<std::pair<int, int>, int> incidence;
+  const auto& F = sim.mesh.faces;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k);
+      const int b = F(f, (k + 1) % 3);
+      if (++incidence[{std::min(a, b), std::max(a, b)}] == 3)
+        throw InputError(path, 0,
+                         fmt::format("garment edge between vertices {} and {} is shared by more "
+                                     "than two faces (non-manifold)",
+                                     sim.sim_to_obj[static_cast<std::size_t>(std::min(a, b))] + 1,
+                                     sim.sim_to_obj[static_cast<std::size_t>(std::max(a, b))] + 1));
+    }
+}
+
 }  // namespace
 
 Scene load_scene(const ScenePaths& paths) {
@@ -30,6 +49,7 @@ Scene load_scene(const ScenePaths& paths) {
   if (paths.avatar.empty()) throw InputError("", 0, "no avatar file given");
   Scene scene;
   scene.garment = load_surface(paths.garment, "garment", scene.garment_document, scene.warnings);
+  require_edge_manifold(scene.garment, paths.garment);
   scene.avatar = load_surface(paths.avatar, "avatar", scene.avatar_document, scene.warnings);
 
   if (paths.source_skeleton.empty() != paths.target_skeleton.empty())
