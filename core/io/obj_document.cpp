@@ -39,8 +39,10 @@ int resolve_index(const TextFile& file, std::size_t line, std::string_view token
 
 }  // namespace
 
-ObjDocument read_obj(const std::string& path) {
-  const TextFile file(path);
+ObjDocument read_obj(const std::string& path) { return read_obj(TextFile(path)); }
+
+ObjDocument read_obj(const TextFile& file) {
+  const std::string& path = file.path();
   ObjDocument doc;
   doc.source_path = path;
   std::vector<std::array<double, 3>> positions;

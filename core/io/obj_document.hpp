@@ -8,6 +8,8 @@
 
 namespace gr {
 
+class TextFile;
+
 /// One corner of an OBJ face: 0-based indices into the document's positions, texture
 /// coordinates and normals; -1 where the face gives none.
 struct ObjCorner {
@@ -45,6 +47,8 @@ struct ObjDocument {
 ///        non-finite number, an index that is zero or out of range, a face with fewer
 ///        than three corners, or a file with no vertex.
 ObjDocument read_obj(const std::string& path);
+/// Same, from a file already read (see TextFile).
+ObjDocument read_obj(const TextFile& file);
 
 /// Writes `document` with the given positions (#P×3, same order as document.positions)
 /// in full precision (`%.17g`). Normals are recomputed from the new positions: one

@@ -11,8 +11,9 @@
 
 namespace gr {
 
-Skeleton read_skeleton(const std::string& path) {
-  const TextFile file(path);
+Skeleton read_skeleton(const std::string& path) { return read_skeleton(TextFile(path)); }
+
+Skeleton read_skeleton(const TextFile& file) {
   std::vector<Vector3d> joints;
   std::vector<std::pair<int, int>> bones;
   for (std::size_t i = 0; i < file.line_count(); ++i) {

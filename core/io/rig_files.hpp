@@ -7,6 +7,8 @@
 
 namespace gr {
 
+class TextFile;
+
 /// A skeleton as an edge mesh: joints and the bones between them.
 struct Skeleton {
   MatrixX3d joints;  ///< #J×3, in the file's units and frame
@@ -17,6 +19,8 @@ struct Skeleton {
 /// @throw InputError on a malformed file, a bone index out of range, a bone joining a
 ///        joint to itself, or a skeleton with no bone.
 Skeleton read_skeleton(const std::string& path);
+/// Same, from a file already read (see TextFile).
+Skeleton read_skeleton(const TextFile& file);
 
 /// Checks that two skeletons correspond joint by joint and bone by bone (bone direction
 /// may differ).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "core/common/errors.hpp"
 
@@ -15,6 +16,16 @@ TextFile::TextFile(const std::string& path) : path_(path) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
   contents_ = buffer.str();
+  split_lines();
+}
+
+TextFile::TextFile(const std::string& name, std::string contents)
+    : path_(name), contents_(std::move(contents)) {
+  split_lines();
+}
+
+void TextFile::split_lines() {
+  const std::string& path = path_;
   if (contents_.find('\0') != std::string::npos)
     throw InputError(path, 0, "binary data where a text file was expected");
   if (contents_.find_first_not_of(" \t\r\n") == std::string::npos)

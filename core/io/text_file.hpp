@@ -15,6 +15,9 @@ class TextFile {
   /// @throw InputError when the file is missing, unreadable, empty (no non-blank
   ///        character) or binary (contains a NUL byte).
   explicit TextFile(const std::string& path);
+  /// Takes `contents` as the file named `name` (for data already in memory).
+  /// @throw InputError when the contents are empty or binary.
+  TextFile(const std::string& name, std::string contents);
 
   const std::string& path() const { return path_; }
   std::size_t line_count() const { return lines_.size(); }
@@ -35,6 +38,8 @@ class TextFile {
   [[noreturn]] void fail(std::size_t line_index, const std::string& message) const;
 
  private:
+  void split_lines();
+
   std::string path_;
   std::string contents_;
   std::vector<std::string_view> lines_;
