@@ -1,3 +1,4 @@
+#include <cstdint>
 #include <cstdio>
 
 #include "tools/cli/commands.hpp"
@@ -40,12 +41,40 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--no-fit", options->inputs.no_fit,
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting");
   cmd->add_flag("--skirt", options->skirt, "Garment is a skirt: add a virtual bone between the legs");
-  cmd->add_option("--shrink", options->shrink_mode, "How to shrink the avatar")
-      ->check(CLI::IsMember({"levelset", "skeleton"}))
-      ->capture_default_str();
-  cmd->add_option("--quality", options->quality, "Speed against accuracy preset")
+  cmd->add_option("--shrink", options->shrink_mode,
+                  "How to shrink the avatar: levelset (erode along its signed distance) or "
+                  "skeleton (collapse onto the source skeleton's bones); default: skeleton when "
+                  "skeletons are given, else levelset")
+      ->check(CLI::IsMember({"levelset", "skeleton"}));
+  cmd->add_option("--quality", options->quality,
+                  "Speed against accuracy preset: fast, balanced (the paper's settings) or "
+                  "accurate; the options below override single parameters")
       ->check(CLI::IsMember({"fast", "balanced", "accurate"}))
       ->capture_default_str();
+  auto& o = options->overrides;
+  const char* units = " (normalized scene units: the avatar is about 2 tall)";
+  cmd->add_option("--dhat", o.dhat, std::string("Barrier support distance") + units)
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--eps-tol", o.eps_tol, "Newton stops when the gradient norm is below this")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--voxel-size", o.voxel_size, std::string("Signed-distance grid spacing") + units)
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--fit-samples", o.fit_samples, "Fit quadrature points per face (1, 3 or 6)")
+      ->check(CLI::IsMember({1, 3, 6}));
+  cmd->add_option("--w-contact", o.w_contact, "Barrier stiffness")->check(CLI::PositiveNumber);
+  cmd->add_option("--w-fit", o.w_fit, "Fit term weight")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--w-pos", o.w_pos, "Boundary-loop position weight (with skeletons)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-newton-iterations", o.max_newton_iterations, "Iteration cap per Newton solve")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-al-rounds", o.max_al_rounds, "Cap on augmented-Lagrangian rounds")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--ccd-separation", o.ccd_min_separation_ratio,
+                  "Fraction of each pair's gap that a CCD-bounded step keeps")
+      ->check(CLI::Range(1e-6, 0.99));
+  cmd->add_flag_function(
+      "--no-self-contact", [&o](std::int64_t) { o.self_contact = false; },
+      "Do not model garment self-contact (the certificate still checks it)");
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "tools/pipeline/parameters.hpp"
+#include "tools/pipeline/report.hpp"
 #include "tools/pipeline/scene.hpp"
 
 namespace gr {
@@ -11,8 +13,9 @@ struct RetargetOptions {
   ScenePaths inputs;
   std::string out_dir;
   bool skirt = false;          ///< add a virtual bone between the legs for L_pos
-  std::string shrink_mode = "levelset";  ///< "levelset" or "skeleton"
+  std::string shrink_mode;     ///< "levelset", "skeleton", or empty: skeleton when skeletons are given
   std::string quality = "balanced";      ///< "fast", "balanced" or "accurate"
+  ParameterOverrides overrides;          ///< individual knobs over the preset
   int threads = 0;             ///< 0: all cores
   bool frames = false;         ///< write intermediate garment/avatar OBJs
   bool quiet = false;
@@ -26,6 +29,7 @@ struct RetargetResult {
   std::string garment_path;      ///< the written garment, when one was written
   std::string report_path;
   std::string message;           ///< one line for the user
+  RetargetReport report;
 };
 
 /// Runs the pipeline: read, normalize, shrink, inflate, fit, export, certify.

@@ -1,0 +1,187 @@
+// Speed against accuracy: runs each scene at each quality preset and along sweeps of
+// eps_tol and voxel size, then writes results.csv, results.md and a plot of time against
+// fit error and against distortion (matplotlib, in a virtual environment made on first use).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "core/common/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "tools/pipeline/retarget.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BenchScene {
+  std::string name;
+  gr::ScenePaths paths;
+  bool skirt = false;
+};
+
+std::vector<BenchScene> default_scenes(const std::string& project, const std::string& shared) {
+  std::vector<BenchScene> scenes;
+  const std::string bundled = project + "/tools/scenes/dress_form/";
+  scenes.push_back({"dress_form",
+                    {bundled + "garment.obj", bundled + "avatar.obj", "", "", "", bundled + "no-fit.txt"},
+                    false});
+  if (fs::exists(shared)) {
+    scenes.push_back({"foxgirl_skirt",
+                      {shared + "/garments/skirt/garment.obj", shared + "/avatars/foxgirl/avatar.obj",
+                       shared + "/garments/skirt/skeleton.obj", shared + "/avatars/foxgirl/skeleton.obj",
+                       "", shared + "/garments/skirt/no-fit.txt"},
+                      true});
+    scenes.push_back({"goblin_puffer",
+                      {shared + "/garments/puffer/garment.obj", shared + "/avatars/goblin/avatar.obj",
+                       shared + "/garments/puffer/skeleton.obj", shared + "/avatars/goblin/skeleton.obj",
+                       shared + "/avatars/goblin/skin.txt", shared + "/garments/puffer/no-fit.txt"},
+                      false});
+  }
+  return scenes;
+}
+
+struct Run {
+  std::string scene, config, quality;
+  bool preset = false;
+  gr::RetargetResult result;
+};
+
+const char* kCsvHeader =
+    "scene,config,quality,preset,status,certified,eps_tol,voxel_size,dhat,fit_samples,"
+    "shrink_s,inflate_s,fit_s,certify_s,total_s,newton_inflate,newton_fit,al_rounds,"
+    "peak_memory_mb,fit_error_mean,fit_error_p95,edge_change_mean,edge_change_max,"
+    "surface_energy_per_area,min_clearance\n";
+
+std::string csv_row(const Run& run) {
+  const auto& r = run.result.report;
+  const auto& p = r.parameters;
+  return fmt::format(
+      "{},{},{},{},{},{},{:g},{:g},{:g},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{:.1f},"
+      "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+      run.scene, run.config, run.quality, run.preset ? 1 : 0, r.inflate_status + "/" + r.fit_status,
+      r.certified ? 1 : 0, p.eps_tol, p.voxel_size, p.dhat, p.fit_samples, r.seconds.shrink,
+      r.seconds.inflate, r.seconds.fit, r.seconds.certify, r.seconds.total,
+      r.inflate_newton_iterations, r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb,
+      r.fit_error.mean, r.fit_error.p95, r.distortion.mean_edge_change,
+      r.distortion.max_edge_change, r.surface_energy_per_area, r.min_distance / r.scene_scale);
+}
+
+std::string markdown_table(const std::vector<Run>& runs) {
+  std::string md =
+      "| scene | config | certified | shrink s | inflate s | fit s | certify s | total s | Newton "
+      "(inflate/fit) | AL rounds | peak MB | fit error mean / p95 | edge change mean / max | "
+      "min clearance |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Run& run : runs) {
+    const auto& r = run.result.report;
+    md += fmt::format(
+        "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {}/{} | {} | {:.0f} | {:.3g} / "
+        "{:.3g} | {:.2%} / {:.2%} | {:.3g} |\n",
+        run.scene, run.config, r.certified ? "yes" : "**no**", r.seconds.shrink, r.seconds.inflate,
+        r.seconds.fit, r.seconds.certify, r.seconds.total, r.inflate_newton_iterations,
+        r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95,
+        r.distortion.mean_edge_change, r.distortion.max_edge_change, r.min_distance / r.scene_scale);
+  }
+  md += "\nFit error and clearance in each avatar's file units; times are wall seconds on this "
+        "machine.\n";
+  return md;
+}
+
+/// Makes (once) a virtual environment with matplotlib beside the results and plots them.
+int plot(const std::string& project, const fs::path& out) {
+  const fs::path venv = out / ".venv";
+  if (!fs::exists(venv / "bin" / "python")) {
+    const std::string make = fmt::format(
+        "python3 -m venv '{}' && '{}/bin/pip' install --quiet matplotlib", venv.string(), venv.string());
+    if (std::system(make.c_str()) != 0) {
+      std::fprintf(stderr, "retarget_benchmark: cannot set up matplotlib; table written, no plot\n");
+      return 1;
+    }
+  }
+  const std::string run = fmt::format("'{}/bin/python' '{}/tools/bench/plot_tradeoff.py' '{}' '{}'",
+                                      venv.string(), project, (out / "results.csv").string(),
+                                      (out / "tradeoff.png").string());
+  return std::system(run.c_str()) == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Speed against accuracy of garment-retarget on real scenes."};
+  std::string project = fs::path(__FILE__).parent_path().parent_path().parent_path().string();
+  std::string shared = GR_SHARED_DATA_DIR;
+  std::string out = "out/bench";
+  std::vector<std::string> only;
+  std::vector<std::string> presets = {"fast", "balanced", "accurate"};
+  std::vector<double> eps_sweep = {1e-2, 1e-4, 1e-6};
+  std::vector<double> voxel_sweep = {0.02, 0.005};
+  int threads = 0;
+  app.add_option("--project", project, "Project root (for the bundled scene)");
+  app.add_option("--shared-data", shared, "Folder of the shared scenes");
+  app.add_option("--out", out, "Where results go");
+  app.add_option("--scene", only, "Run only these scenes (dress_form, foxgirl_skirt, goblin_puffer)");
+  app.add_option("--presets", presets, "Quality presets to run");
+  app.add_option("--eps-sweep", eps_sweep, "eps_tol values run on top of the balanced preset");
+  app.add_option("--voxel-sweep", voxel_sweep, "Voxel sizes run on top of the balanced preset");
+  app.add_option("--threads", threads, "Worker threads (0: all cores)");
+  CLI11_PARSE(app, argc, argv);
+
+  std::vector<Run> runs;
+  fs::create_directories(out);
+  for (const BenchScene& scene : default_scenes(project, shared)) {
+    if (!only.empty() && std::find(only.begin(), only.end(), scene.name) == only.end()) continue;
+    struct Config {
+      std::string name, quality;
+      bool preset;
+      gr::ParameterOverrides overrides;
+    };
+    std::vector<Config> configs;
+    for (const auto& q : presets) configs.push_back({q, q, true, {}});
+    for (const double e : eps_sweep) {
+      Config c{fmt::format("eps_tol={:g}", e), "balanced", false, {}};
+      c.overrides.eps_tol = e;
+      configs.push_back(c);
+    }
+    for (const double v : voxel_sweep) {
+      Config c{fmt::format("voxel={:g}", v), "balanced", false, {}};
+      c.overrides.voxel_size = v;
+      configs.push_back(c);
+    }
+    for (const Config& config : configs) {
+      gr::RetargetOptions options;
+      options.inputs = scene.paths;
+      options.skirt = scene.skirt;
+      options.quality = config.quality;
+      options.overrides = config.overrides;
+      options.threads = threads;
+      options.quiet = true;
+      options.out_dir = (fs::path(out) / "runs" / (scene.name + "_" + config.name)).string();
+      std::fprintf(stderr, "%s %s ...\n", scene.name.c_str(), config.name.c_str());
+      Run run{scene.name, config.name, config.quality, config.preset, {}};
+      try {
+        run.result = gr::run_retarget(options);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "  failed: %s\n", e.what());
+        continue;
+      }
+      std::fprintf(stderr, "  %.2f s, certified %s\n", run.result.report.seconds.total,
+                   run.result.report.certified ? "yes" : "no");
+      runs.push_back(std::move(run));
+    }
+  }
+
+  std::string csv = kCsvHeader;
+  for (const Run& run : runs) csv += csv_row(run);
+  gr::write_file_atomically((fs::path(out) / "results.csv").string(), [&](std::ostream& s) { s << csv; });
+  const std::string md = markdown_table(runs);
+  gr::write_file_atomically((fs::path(out) / "results.md").string(), [&](std::ostream& s) { s << md; });
+  std::printf("%s", md.c_str());
+  const int plotted = plot(project, out);
+  std::printf("\nresults: %s/results.csv, results.md%s\n", out.c_str(),
+              plotted == 0 ? ", tradeoff.png" : "");
+  return 0;
+}

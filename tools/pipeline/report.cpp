@@ -1,0 +1,78 @@
+#include "tools/pipeline/report.hpp"
+
+#include <sys/resource.h>
+
+namespace gr {
+
+nlohmann::json to_json(const RetargetReport& r) {
+  using nlohmann::json;
+  const auto& p = r.parameters;
+  json report = {
+      {"tool", {{"name", "garment-retarget"}, {"version", GR_VERSION}}},
+      {"quality", r.quality},
+      {"parameters",
+       {{"dhat", p.dhat},
+        {"w_contact", p.w_contact},
+        {"w_fit", p.w_fit},
+        {"w_pos", p.w_pos},
+        {"eps_tol", p.eps_tol},
+        {"max_newton_iterations", p.max_newton_iterations},
+        {"max_al_rounds", p.max_al_rounds},
+        {"voxel_size", p.voxel_size},
+        {"fit_samples_per_face", p.fit_samples},
+        {"ccd_min_separation_ratio", p.ccd_min_separation_ratio},
+        {"self_contact", p.self_contact},
+        {"units", "normalized scene units (avatar about 2 tall)"}}},
+      {"seconds",
+       {{"read", r.seconds.read},
+        {"normalize", r.seconds.normalize},
+        {"shrink", r.seconds.shrink},
+        {"inflate", r.seconds.inflate},
+        {"fit", r.seconds.fit},
+        {"write", r.seconds.write},
+        {"certify", r.seconds.certify},
+        {"total", r.seconds.total}}},
+      {"shrink",
+       {{"mode", r.shrink_mode},
+        {"depth", r.shrink_depth},
+        {"medial_vertices", r.shrink_medial_vertices}}},
+      {"inflate",
+       {{"al_rounds", r.al_rounds},
+        {"resets", r.al_resets},
+        {"newton_iterations", r.inflate_newton_iterations},
+        {"status", r.inflate_status}}},
+      {"fit", {{"newton_iterations", r.fit_newton_iterations}, {"status", r.fit_status}}},
+      {"energies", r.final_energies},
+      {"min_distance",
+       {{"normalized", r.min_distance}, {"avatar_units", r.min_distance / r.scene_scale}}},
+      {"fit_error",
+       {{"mean", r.fit_error.mean},
+        {"p95", r.fit_error.p95},
+        {"samples", r.fit_error.samples},
+        {"units", "avatar file units"}}},
+      {"distortion",
+       {{"mean_edge_change", r.distortion.mean_edge_change},
+        {"max_edge_change", r.distortion.max_edge_change},
+        {"surface_energy_per_area", r.surface_energy_per_area}}},
+      {"modelled",
+       {{"terms", r.terms},
+        {"self_contact", r.self_contact},
+        {"garment_vertices", r.garment_vertices},
+        {"garment_faces", r.garment_faces},
+        {"fit_faces", r.fit_faces},
+        {"avatar_faces_total", r.avatar_faces_total},
+        {"avatar_faces_modelled", r.avatar_faces_modelled}}},
+      {"peak_memory_mb", r.peak_memory_mb},
+      {"certified", r.certified},
+      {"warnings", r.warnings},
+  };
+  return report;
+}
+
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is KiB on Linux
+}
+
+}  // namespace gr

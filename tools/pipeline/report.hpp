@@ -1,0 +1,63 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tools/pipeline/metrics.hpp"
+#include "tools/pipeline/parameters.hpp"
+
+namespace gr {
+
+/// Wall time of each stage, seconds.
+struct StageSeconds {
+  double read = 0, normalize = 0, shrink = 0, inflate = 0, fit = 0, write = 0, certify = 0,
+         total = 0;
+};
+
+/// What a retarget run did and measured; written as report.json.
+struct RetargetReport {
+  std::string quality;
+  RetargetParameters parameters;
+  StageSeconds seconds;
+
+  std::string shrink_mode;
+  double shrink_depth = 0.0;       ///< levelset erosion d, normalized units (0 for skeleton)
+  int shrink_medial_vertices = 0;  ///< vertices stopped in the medial region
+
+  int al_rounds = 0;
+  int al_resets = 0;
+  int inflate_newton_iterations = 0;
+  int fit_newton_iterations = 0;
+  std::string inflate_status;
+  std::string fit_status;
+  std::map<std::string, double> final_energies;  ///< each term's value after the fit
+
+  double min_distance = 0.0;      ///< garment–avatar, normalized units (solver's view)
+  double scene_scale = 1.0;       ///< normalized units per avatar file unit
+  FitError fit_error;             ///< avatar file units
+  Distortion distortion;
+  double surface_energy_per_area = 0.0;
+
+  // What was modelled, and why.
+  std::vector<std::string> terms;
+  bool self_contact = true;
+  int garment_vertices = 0;
+  int garment_faces = 0;
+  int fit_faces = 0;
+  int avatar_faces_total = 0;
+  int avatar_faces_modelled = 0;
+  double peak_memory_mb = 0.0;
+
+  bool certified = false;
+  std::vector<std::string> warnings;
+};
+
+nlohmann::json to_json(const RetargetReport& report);
+
+/// Peak resident memory of this process so far, MiB.
+double peak_memory_mb();
+
+}  // namespace gr
