@@ -1,0 +1,28 @@
+#include "tools/pipeline/contact_scope.hpp"
+
+#include <limits>
+
+namespace gr {
+
+std::vector<int> reachable_avatar_faces(const Eigen::Ref<const MatrixX3d>& garment,
+                                        const Eigen::Ref<const MatrixX3d>& shrunk,
+                                        const Eigen::Ref<const MatrixX3d>& target,
+                                        const Eigen::Ref<const MatrixX3i>& faces, double margin) {
+  const Eigen::Array3d lo = garment.colwise().minCoeff().transpose().array() - margin;
+  const Eigen::Array3d hi = garment.colwise().maxCoeff().transpose().array() + margin;
+  std::vector<int> reachable;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    Eigen::Array3d face_lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Array3d face_hi = -face_lo;
+    for (int k = 0; k < 3; ++k)
+      for (const auto* positions : {&shrunk, &target}) {
+        const Eigen::Array3d p = positions->row(faces(f, k)).transpose().array();
+        face_lo = face_lo.min(p);
+        face_hi = face_hi.max(p);
+      }
+    if ((face_hi >= lo).all() && (face_lo <= hi).all()) reachable.push_back(static_cast<int>(f));
+  }
+  return reachable;
+}
+
+}  // namespace gr
