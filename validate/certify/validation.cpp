@@ -7,7 +7,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/common/errors.hpp"
-#include "core/io/obj_document.hpp"
 #include "validate/checks/degenerate_faces.hpp"
 #include "validate/report/file_digest.hpp"
 
@@ -90,17 +89,23 @@ ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
   return result;
 }
 
+TriangleMesh mesh_as_written(const ObjDocument& document) {
+  TriangleMesh mesh;
+  mesh.vertices = document.positions;
+  mesh.faces.resize(static_cast<Eigen::Index>(document.faces.size()), 3);
+  for (std::size_t f = 0; f < document.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      mesh.faces(static_cast<Eigen::Index>(f), c) = document.faces[f][static_cast<std::size_t>(c)].position;
+  return mesh;
+}
+
 CheckedFile read_checked_file(const std::string& path) {
   ObjDocument document = read_obj(path);
   if (document.faces.empty()) throw InputError(path, 0, "has no face to validate");
   CheckedFile file;
   file.path = path;
   file.sha256 = sha256_of_file(path);
-  file.mesh.vertices = std::move(document.positions);
-  file.mesh.faces.resize(static_cast<Eigen::Index>(document.faces.size()), 3);
-  for (std::size_t f = 0; f < document.faces.size(); ++f)
-    for (int c = 0; c < 3; ++c)
-      file.mesh.faces(static_cast<Eigen::Index>(f), c) = document.faces[f][static_cast<std::size_t>(c)].position;
+  file.mesh = mesh_as_written(document);
   file.warnings = std::move(document.warnings);
   return file;
 }

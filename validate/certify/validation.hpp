@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/common/types.hpp"
+#include "core/io/obj_document.hpp"
 #include "validate/checks/clearance.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 #include "validate/checks/self_intersections.hpp"
@@ -72,6 +73,10 @@ struct ValidationResult {
 /// @pre every mesh has at least one face; threshold, when set, is >= 0.
 ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
                                  const TriangleMesh& avatar, const ValidationOptions& options);
+
+/// The mesh exactly as an OBJ document holds it: every `v` line as a row (#P×3) and the
+/// reader's triangulated faces (#F×3), nothing welded or dropped.
+TriangleMesh mesh_as_written(const ObjDocument& document);
 
 /// One input file as the validator read it.
 struct CheckedFile {
