@@ -1,5 +1,6 @@
 #include "validate/checks/self_intersections.hpp"
 
+#include <array>
 #include <atomic>
 
 #include <CGAL/intersections.h>

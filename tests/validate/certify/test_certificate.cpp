@@ -151,3 +151,24 @@ TEST_CASE("bad input to validation is an InputError", "[validate][report]") {
   negative.threshold = -1.0;
   CHECK_THROWS_AS(gr::validate_files({avatar}, avatar, negative), gr::InputError);
 }
+
+TEST_CASE("report lists are capped while counts stay complete", "[validate][report]") {
+  const auto dir = gr::test::fresh_temp_dir("validation_capped");
+  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  // Two faces piercing the avatar.
+  const std::string garment = write_text(
+      dir / "garment.obj",
+      gr::test::obj_text(make_mesh({{0.2, 0.2, -1}, {0.3, 0.2, 1}, {0.2, 0.3, 1},
+                                    {0.6, 0.6, -1}, {0.7, 0.6, 1}, {0.6, 0.7, 1}},
+                                   {{0, 1, 2}, {3, 4, 5}})));
+  const gr::Validation v = gr::validate_files({garment}, avatar, {});
+  const auto capped = gr::validation_report(v, 1);
+  CHECK(capped["counts"]["garment_avatar_intersections"] == 2);
+  CHECK(capped["garments"][0]["avatar_intersections"]["count"] == 2);
+  CHECK(capped["garments"][0]["avatar_intersections"]["pairs"].size() == 1);
+  CHECK(capped["issues"]["num_errors"] == 2);
+  CHECK(capped["issues"]["truncated"] == true);
+  const auto full = gr::validation_report(v, 10);
+  CHECK(full["garments"][0]["avatar_intersections"]["pairs"].size() == 2);
+  CHECK(full["issues"]["truncated"] == false);
+}
