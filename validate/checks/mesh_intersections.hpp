@@ -3,7 +3,6 @@
 #include <cstddef>
 #include <limits>
 #include <vector>
-#include <vector>
 
 #include "core/common/types.hpp"
 

@@ -1,0 +1,21 @@
+#include "validate/certify/certificate.hpp"
+
+#include "validate/report/validation_report.hpp"
+
+namespace gr {
+
+Certificate certify_garment(const std::string& garment_path, const std::string& avatar_path,
+                            const nlohmann::json& extra, const ValidationOptions& options) {
+  Certificate c;
+  c.validation = validate_files({garment_path}, avatar_path, options);
+  c.json = validation_report(c.validation);
+  c.json["kind"] = "certificate";
+  c.json["extra"] = nlohmann::ordered_json(extra);
+  return c;
+}
+
+void write_certificate(const std::string& path, const Certificate& certificate) {
+  write_json_file(path, certificate.json);
+}
+
+}  // namespace gr

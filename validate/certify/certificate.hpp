@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "validate/certify/validation.hpp"
+
+namespace gr {
+
+/// The certification of a written garment: every check and its JSON.
+struct Certificate {
+  Validation validation;
+  nlohmann::ordered_json json;  ///< the validation report with kind "certificate" and the caller's `extra`
+  bool certified() const { return validation.result.certified(); }
+};
+
+/// Certifies a garment file as written, independently of the solver: re-reads the garment
+/// and the avatar from disk (positions exactly as written, faces as triangulated by the
+/// reader, no welding) and runs every check of validate_files. Both files must be in one
+/// frame (the avatar's input frame, as the pipeline writes its output).
+/// @param extra free-form JSON from the caller (input SHA-256s, parameters, versions),
+///        stored under "extra" in the certificate unchanged.
+/// @throw InputError when a file is missing, malformed or has no face.
+Certificate certify_garment(const std::string& garment_path, const std::string& avatar_path,
+                            const nlohmann::json& extra = nlohmann::json::object(),
+                            const ValidationOptions& options = {});
+
+/// Writes `certificate.json` (any path) atomically.
+/// @throw OutputError when the file cannot be written.
+void write_certificate(const std::string& path, const Certificate& certificate);
+
+}  // namespace gr

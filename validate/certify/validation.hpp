@@ -1,0 +1,107 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/types.hpp"
+#include "core/io/obj_document.hpp"
+#include "validate/checks/clearance.hpp"
+#include "validate/checks/mesh_intersections.hpp"
+#include "validate/checks/self_intersections.hpp"
+
+namespace gr {
+
+/// What to check beyond intersections.
+struct ValidationOptions {
+  /// Count garment vertices closer than this to the avatar (input units); none when unset.
+  std::optional<double> threshold;
+};
+
+/// Everything found about one garment. Face indices are rows of the checked meshes.
+struct GarmentFindings {
+  FacePairList avatar_intersections;  ///< (garment face, avatar face), all listed
+  SelfIntersections self_intersections;
+  std::vector<int> degenerate_faces;
+  /// Garment–avatar clearance. When an intersection was found it is 0 at the first
+  /// intersecting pair, with no nearest points (FCL is not asked).
+  Clearance avatar_clearance;
+  bool clearance_has_points = false;
+  std::optional<std::vector<int>> near_vertices;  ///< set when a threshold was given
+};
+
+/// One pair of garments (layers) checked against each other.
+struct GarmentPairFindings {
+  int first = 0;
+  int second = 0;
+  FacePairList intersections;  ///< (face of first, face of second), all listed
+  Clearance clearance;         ///< 0 at the first intersecting pair when they intersect
+  bool clearance_has_points = false;
+};
+
+/// Counts over every garment and garment pair.
+struct ValidationTotals {
+  std::size_t garment_avatar_intersections = 0;
+  std::size_t garment_self_intersections = 0;
+  std::size_t garment_garment_intersections = 0;
+  std::size_t degenerate_faces = 0;
+  std::size_t untested_degenerate_neighbours = 0;
+  std::optional<std::size_t> near_vertices;  ///< set when a threshold was given
+  double smallest_avatar_clearance = 0.0;     ///< over all garments, input units
+};
+
+/// The result of every check.
+struct ValidationResult {
+  std::vector<GarmentFindings> garments;
+  std::vector<GarmentPairFindings> garment_pairs;
+
+  ValidationTotals totals() const;
+  /// Garment–avatar, garment self- and garment–garment intersecting pairs, together.
+  std::size_t intersection_count() const;
+  /// True when no intersection of any kind was found (degenerate faces and vertices
+  /// near the avatar are warnings, not failures).
+  bool certified() const { return intersection_count() == 0; }
+};
+
+/// Runs every check on meshes in one frame: each garment against the avatar (exact
+/// intersections, clearance, near vertices), each garment against itself (exact
+/// self-intersections, degenerate faces), and each pair of garments against each other.
+/// The avatar is never checked against itself: avatars are triangle soups whose parts
+/// overlap, and that is not the garment's fault.
+/// @param garments each #V×3 positions and #F×3 faces, as written in its file (unwelded;
+///        rows at identical coordinates are one vertex for self-intersection).
+/// @pre every mesh has at least one face; threshold, when set, is >= 0.
+ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
+                                 const TriangleMesh& avatar, const ValidationOptions& options);
+
+/// The mesh exactly as an OBJ document holds it: every `v` line as a row (#P×3) and the
+/// reader's triangulated faces (#F×3), nothing welded or dropped.
+TriangleMesh mesh_as_written(const ObjDocument& document);
+
+/// One input file as the validator read it.
+struct CheckedFile {
+  std::string path;
+  std::string sha256;
+  TriangleMesh mesh;                  ///< OBJ positions (every `v` line) and triangulated faces
+  std::vector<std::string> warnings;  ///< the reader's, e.g. polygons triangulated
+};
+
+/// Reads an OBJ file for validation: positions and faces exactly as written (polygons
+/// fan-triangulated by the reader), no welding, no dropped face; and its SHA-256.
+/// @throw InputError when the file is missing or malformed or has no face.
+CheckedFile read_checked_file(const std::string& path);
+
+/// Files read and every check run on them.
+struct Validation {
+  std::vector<CheckedFile> garments;
+  CheckedFile avatar;
+  ValidationOptions options;
+  ValidationResult result;
+};
+
+/// Reads the files from disk (see read_checked_file) and runs validate_meshes on them.
+/// @throw InputError for a bad file, no garment, or a negative or non-finite threshold.
+Validation validate_files(const std::vector<std::string>& garment_paths,
+                          const std::string& avatar_path, const ValidationOptions& options);
+
+}  // namespace gr
