@@ -35,10 +35,9 @@ Placed place(const std::string& data, const std::string& garment, const std::str
   paths.target_skeleton = data + "/avatars/" + avatar + "/skeleton.obj";
   const gr::Scene scene = gr::load_scene(paths);
   const gr::Normalization n = gr::normalize_scene(scene);
-  using Points = Eigen::Ref<const gr::MatrixX3d>;
   Placed p{gr::mesh_as_written(scene.garment_document), gr::mesh_as_written(scene.avatar_document)};
-  p.garment.vertices = n.garment_to_scene.apply(Points(p.garment.vertices));
-  p.avatar.vertices = n.avatar_to_scene.apply(Points(p.avatar.vertices));
+  p.garment.vertices = n.garment_to_scene.apply_rows(p.garment.vertices);
+  p.avatar.vertices = n.avatar_to_scene.apply_rows(p.avatar.vertices);
   return p;
 }
 

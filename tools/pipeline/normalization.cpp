@@ -9,14 +9,14 @@
 
 namespace gr {
 
-MatrixX3d Similarity::apply(const Eigen::Ref<const MatrixX3d>& points) const {
+MatrixX3d Similarity::apply_rows(const Eigen::Ref<const MatrixX3d>& points) const {
   MatrixX3d out(points.rows(), 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     out.row(i) = apply(Vector3d(points.row(i).transpose())).transpose();
   return out;
 }
 
-MatrixX3d Similarity::invert(const Eigen::Ref<const MatrixX3d>& points) const {
+MatrixX3d Similarity::invert_rows(const Eigen::Ref<const MatrixX3d>& points) const {
   MatrixX3d out(points.rows(), 3);
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     out.row(i) = invert(Vector3d(points.row(i).transpose())).transpose();

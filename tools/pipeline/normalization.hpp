@@ -13,8 +13,9 @@ struct Similarity {
 
   Vector3d apply(const Vector3d& x) const { return scale * (rotation * (x - center)); }
   Vector3d invert(const Vector3d& y) const { return rotation.transpose() * y / scale + center; }
-  MatrixX3d apply(const Eigen::Ref<const MatrixX3d>& points) const;
-  MatrixX3d invert(const Eigen::Ref<const MatrixX3d>& points) const;
+  /// Each row of `points` (#P×3) mapped.
+  MatrixX3d apply_rows(const Eigen::Ref<const MatrixX3d>& points) const;
+  MatrixX3d invert_rows(const Eigen::Ref<const MatrixX3d>& points) const;
 };
 
 /// Where each file's frame lands in the normalized scene, where the body is about

@@ -21,9 +21,8 @@ TEST_CASE("each shared garment placed on each shared avatar intersects it", "[va
   const gr::Normalization normalization = gr::normalize_scene(scene);
   gr::TriangleMesh garment = gr::mesh_as_written(scene.garment_document);
   gr::TriangleMesh avatar = gr::mesh_as_written(scene.avatar_document);
-  using Points = Eigen::Ref<const gr::MatrixX3d>;
-  garment.vertices = normalization.garment_to_scene.apply(Points(garment.vertices));
-  avatar.vertices = normalization.avatar_to_scene.apply(Points(avatar.vertices));
+  garment.vertices = normalization.garment_to_scene.apply_rows(garment.vertices);
+  avatar.vertices = normalization.avatar_to_scene.apply_rows(avatar.vertices);
 
   const gr::ValidationResult placed = gr::validate_meshes({garment}, avatar, {});
   REQUIRE(placed.garments.size() == 1);
