@@ -21,11 +21,12 @@ struct DofLayout {
   /// Index of coordinate `axis` (0..2) of garment vertex `vertex` in x.
   int vertex_dof(int vertex, int axis) const { return position_offset() + 3 * vertex + axis; }
 
-  double t(const Eigen::Ref<const Eigen::VectorXd>& x) const { return t_free ? x[0] : fixed_t; }
-  /// The garment vertices (#Vg×3) of x, as a view into x.
-  Eigen::Map<const MatrixX3d> garment(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  double t(const Eigen::VectorXd& x) const { return t_free ? x[0] : fixed_t; }
+  /// The garment vertices (#Vg×3) of x, as a view into x (so x must outlive it).
+  Eigen::Map<const MatrixX3d> garment(const Eigen::VectorXd& x) const {
     return Eigen::Map<const MatrixX3d>(x.data() + position_offset(), garment_vertex_count, 3);
   }
+  Eigen::Map<const MatrixX3d> garment(Eigen::VectorXd&& temporary) const = delete;
   /// x from t and the garment vertices (#Vg×3).
   Eigen::VectorXd pack(double t, const Eigen::Ref<const MatrixX3d>& garment) const {
     Eigen::VectorXd x(dof_count());
