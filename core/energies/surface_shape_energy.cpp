@@ -9,7 +9,9 @@ namespace {
 
 using LocalVector = SurfaceShapeEnergy::LocalVector;
 using LocalMatrix = SurfaceShapeEnergy::LocalMatrix;
-using Jacobian = Eigen::Matrix<double, 3, 12>;
+using ReducedJacobian = Eigen::Matrix<double, 3, 9>;
+using ReducedMatrix = Eigen::Matrix<double, 9, 9>;
+using Reduction = Eigen::Matrix<double, 9, 12>;
 
 /// [v]×, so that cross_matrix(v) * u = v × u.
 Eigen::Matrix3d cross_matrix(const Vector3d& v) {
@@ -18,52 +20,38 @@ Eigen::Matrix3d cross_matrix(const Vector3d& v) {
   return m;
 }
 
-/// The edge and the two other edges from x0, on local coordinates (x0, x1, x2, x3).
-struct EdgeFrames {
-  Vector3d e, u1, u2;
-  explicit EdgeFrames(const LocalVector& q)
-      : e(q.segment<3>(3) - q.segment<3>(0)),
-        u1(q.segment<3>(6) - q.segment<3>(0)),
-        u2(q.segment<3>(9) - q.segment<3>(0)) {}
-};
+/// T: local coordinates (x0, x1, x2, x3) → edge vectors (e, u1, u2) = (x1 - x0, x2 - x0,
+/// x3 - x0). The energy depends on q only through Tq (it is translation invariant).
+const Reduction& reduction() {
+  static const Reduction T = [] {
+    Reduction m = Reduction::Zero();
+    for (int k = 0; k < 3; ++k) {
+      m.block<3, 3>(3 * k, 0) = -Eigen::Matrix3d::Identity();
+      m.block<3, 3>(3 * k, 3 * (k + 1)) = Eigen::Matrix3d::Identity();
+    }
+    return m;
+  }();
+  return T;
+}
 
-/// r = r1 - r2 and, when asked, its 3×12 Jacobian.
+/// r = r1 - r2 and, when asked, its 3×9 Jacobian with respect to (e, u1, u2).
 Vector3d reconstruction_difference(const SurfaceShapeEnergy::Element& el, const LocalVector& q,
-                                   Jacobian* jacobian) {
-  const EdgeFrames f(q);
+                                   ReducedJacobian* jacobian) {
+  const Vector3d x0 = q.segment<3>(0);
+  const Vector3d e = q.segment<3>(3) - x0, u1 = q.segment<3>(6) - x0, u2 = q.segment<3>(9) - x0;
   const Vector3d& c1 = el.coefficients_first;
   const Vector3d& c2 = el.coefficients_second;
-  const Vector3d r = (c1[0] - c2[0]) * f.e + c1[1] * f.u1 - c2[1] * f.u2 +
-                     c1[2] * f.e.cross(f.u1) - c2[2] * f.e.cross(f.u2);
+  const Vector3d r = (c1[0] - c2[0]) * e + c1[1] * u1 - c2[1] * u2 + c1[2] * e.cross(u1) -
+                     c2[2] * e.cross(u2);
   if (jacobian) {
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     // d(e × u) = -[u]× de + [e]× du.
-    const Eigen::Matrix3d d_e = (c1[0] - c2[0]) * I - c1[2] * cross_matrix(f.u1) +
-                                c2[2] * cross_matrix(f.u2);
-    const Eigen::Matrix3d d_u1 = c1[1] * I + c1[2] * cross_matrix(f.e);
-    const Eigen::Matrix3d d_u2 = -c2[1] * I - c2[2] * cross_matrix(f.e);
-    jacobian->block<3, 3>(0, 0) = -(d_e + d_u1 + d_u2);
-    jacobian->block<3, 3>(0, 3) = d_e;
-    jacobian->block<3, 3>(0, 6) = d_u1;
-    jacobian->block<3, 3>(0, 9) = d_u2;
+    jacobian->block<3, 3>(0, 0) =
+        (c1[0] - c2[0]) * I - c1[2] * cross_matrix(u1) + c2[2] * cross_matrix(u2);
+    jacobian->block<3, 3>(0, 3) = c1[1] * I + c1[2] * cross_matrix(e);
+    jacobian->block<3, 3>(0, 6) = -c2[1] * I - c2[2] * cross_matrix(e);
   }
   return r;
-}
-
-/// Adds c · Hessian of rho·(e × u) to h, where e = x1 - x0 and u = x_k - x0 (k = 2 or 3):
-/// rho·(e × u) = eᵀ B u with B = -[rho]×.
-void add_triple_product_hessian(const Vector3d& rho, double c, int k, LocalMatrix& h) {
-  const Eigen::Matrix3d B = -c * cross_matrix(rho);
-  const int e_vertices[2] = {0, 1};
-  const double e_signs[2] = {-1.0, 1.0};
-  const int u_vertices[2] = {0, k};
-  const double u_signs[2] = {-1.0, 1.0};
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) {
-      const double s = e_signs[i] * u_signs[j];
-      h.block<3, 3>(3 * e_vertices[i], 3 * u_vertices[j]) += s * B;
-      h.block<3, 3>(3 * u_vertices[j], 3 * e_vertices[i]) += s * B.transpose();
-    }
 }
 
 }  // namespace
@@ -136,20 +124,27 @@ double SurfaceShapeEnergy::element_value(const Element& element, const LocalVect
 
 double SurfaceShapeEnergy::element_gradient(const Element& element, const LocalVector& q,
                                             LocalVector& g) {
-  Jacobian J;
+  ReducedJacobian J;
   const Vector3d r = reconstruction_difference(element, q, &J);
-  g = 2.0 * element.weight * J.transpose() * r;
+  g = reduction().transpose() * (2.0 * element.weight * J.transpose() * r);
   return element.weight * r.squaredNorm();
 }
 
 void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVector& q,
-                                         LocalMatrix& h) {
-  Jacobian J;
+                                         LocalMatrix& h, bool project_psd) {
+  ReducedJacobian J;
   const Vector3d r = reconstruction_difference(element, q, &J);
-  h = J.transpose() * J;
-  add_triple_product_hessian(r, element.coefficients_first[2], 2, h);
-  add_triple_product_hessian(r, -element.coefficients_second[2], 3, h);
-  h *= 2.0 * element.weight;
+  ReducedMatrix reduced = J.transpose() * J;
+  // Second-order part: r·(e × u) = eᵀ B u with B = -[r]×, for (e, u1) and (e, u2).
+  const Eigen::Matrix3d B = -cross_matrix(r);
+  const double c1 = element.coefficients_first[2], c2 = element.coefficients_second[2];
+  reduced.block<3, 3>(0, 3) += c1 * B;
+  reduced.block<3, 3>(3, 0) += c1 * B.transpose();
+  reduced.block<3, 3>(0, 6) -= c2 * B;
+  reduced.block<3, 3>(6, 0) -= c2 * B.transpose();
+  reduced *= 2.0 * element.weight;
+  if (project_psd) reduced = project_to_psd(reduced);
+  h = reduction().transpose() * reduced * reduction();
 }
 
 double SurfaceShapeEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
@@ -165,8 +160,10 @@ double SurfaceShapeEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V,
 
 const Eigen::SparseMatrix<double>& SurfaceShapeEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
                                                                bool project_psd) const {
+  // Projected in element_hessian, on the 9 edge-vector coordinates.
   return assembly_.hessian(
-      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V), h); }, project_psd);
+      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V), h, project_psd); },
+      false);
 }
 
 }  // namespace gr

@@ -46,14 +46,18 @@ class SurfaceShapeEnergy {
   double value(const Eigen::Ref<const MatrixX3d>& V) const;
   /// Gradient over x (layout.dof_count()), overwritten; returns the energy.
   double gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const;
-  /// Hessian over x; per-element 12×12 blocks projected to PSD when `project_psd`.
+  /// Hessian over x. With `project_psd` each element's Hessian is projected to PSD in the
+  /// element's edge-vector coordinates (e, u1, u2): the energy depends on the 12
+  /// coordinates only through these 9 (translation invariance), H = Tᵀ Ĥ T, and Tᵀ Ĥ⁺ T is
+  /// PSD at the cost of a 9×9 rather than a 12×12 eigendecomposition.
   const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
                                              bool project_psd = true) const;
 
   /// Per-element pieces on local coordinates q = (x0, x1, x2, x3).
   static double element_value(const Element& element, const LocalVector& q);
   static double element_gradient(const Element& element, const LocalVector& q, LocalVector& g);
-  static void element_hessian(const Element& element, const LocalVector& q, LocalMatrix& h);
+  static void element_hessian(const Element& element, const LocalVector& q, LocalMatrix& h,
+                              bool project_psd = false);
 
  private:
   LocalVector gather(int element, const Eigen::Ref<const MatrixX3d>& V) const;
