@@ -77,13 +77,14 @@ void GarmentProblem::gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradien
   if (layout_.t_free) gradient[layout_.t_index()] += constraint_.derivative(t);
 }
 
-void GarmentProblem::hessian(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian) {
+void GarmentProblem::hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian,
+                                bool project_psd) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  hessian = parameters_.w_surf * surface_.hessian(V);
-  hessian += parameters_.w_contact * contact_.hessian(V, t);
-  if (position_) hessian += parameters_.w_pos * position_->hessian(V, t);
-  if (fit_) hessian += parameters_.w_fit * fit_->hessian(V);
+  hessian = parameters_.w_surf * surface_.hessian(V, project_psd);
+  hessian += parameters_.w_contact * contact_.hessian(V, t, project_psd);
+  if (position_) hessian += parameters_.w_pos * position_->hessian(V, t, project_psd);
+  if (fit_) hessian += parameters_.w_fit * fit_->hessian(V, project_psd);
   // The surface term's pattern holds the whole diagonal, so this entry exists.
   if (layout_.t_free) hessian.coeffRef(layout_.t_index(), layout_.t_index()) += constraint_.second_derivative();
   hessian.makeCompressed();

@@ -64,7 +64,11 @@ class GarmentProblem : public Problem {
   int dof_count() const override { return layout_.dof_count(); }
   double value(const Eigen::VectorXd& x) override;
   void gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) override;
-  void hessian(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian) override;
+  void hessian(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian) override {
+    hessian_of(x, hessian, true);
+  }
+  /// The Hessian with (project_psd) or without (the exact one) per-element projection.
+  void hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian, bool project_psd);
   void solution_changed(const Eigen::VectorXd& x) override;
   double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override;
   /// The largest vertex motion of dx: garment vertices and, through t, avatar vertices.

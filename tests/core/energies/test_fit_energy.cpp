@@ -5,7 +5,7 @@
 #include "core/energies/fit_energy.hpp"
 #include "core/test_shapes.hpp"
 #include "core/energies/analytic_fields.hpp"
-#include "core/energies/fd_check.hpp"
+#include "core/energies/energy_checks.hpp"
 
 using namespace gr;
 

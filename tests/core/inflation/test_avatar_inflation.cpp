@@ -80,15 +80,15 @@ TEST_CASE("avatar inflation: a sphere garment around an inflating sphere avatar"
 TEST_CASE("avatar inflation: a round that leaves t < 0 (eta < 0) resets and recovers",
           "[inflation][integration]") {
   // The garment starts within dhat of A0 all around (same connectivity, radius 0.9 against
-  // 0.899), and the penalty on t starts weak: the first solve relieves the barrier by
-  // shrinking the avatar further (t < 0, so |1 - t| > 1 and eta < 0) rather than by
-  // stretching the garment.
+  // 0.899), it is stiff (large w_surf) and the penalty on t starts weak: the first solve
+  // relieves the barrier by shrinking the avatar further (t < 0, so |1 - t| > 1 and
+  // eta < 0) rather than by stretching the garment.
   GarmentScene scene;
   scene.avatar = test::icosphere(1, 1.0);
   scene.shrunk_avatar = 0.899 * scene.avatar.vertices;
   scene.garment = test::icosphere(1, 0.9);
   RetargetParameters parameters;
-  parameters.initial_lambda1 = 1e-3;
+  parameters.w_surf = 1e6;
   std::vector<InflationRound> rounds;
   const InflationResult result =
       inflate_avatar(scene, parameters, [&](const InflationRound& round) { rounds.push_back(round); });
@@ -98,7 +98,7 @@ TEST_CASE("avatar inflation: a round that leaves t < 0 (eta < 0) resets and reco
   CHECK(rounds.front().eta < 0.0);
   CHECK(rounds.front().reset);
   // Reset doubles lambda1, and eta < 0.99 doubles it again.
-  CHECK(rounds.front().lambda1 == Approx(4e-3));
+  CHECK(rounds.front().lambda1 == Approx(4.0));
   CHECK(result.resets >= 1);
   REQUIRE(result.status == InflationStatus::kSnapped);
   CHECK(result.t == 1.0);

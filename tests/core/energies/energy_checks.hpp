@@ -1,47 +1,12 @@
 #pragma once
 
-#include <algorithm>
-
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
 #include "core/common/types.hpp"
+#include "core/finite_difference.hpp"
 
 namespace gr::test {
-
-/// Central-difference gradient of a scalar function f(x).
-template <typename Function>
-Eigen::VectorXd fd_gradient(Function f, const Eigen::VectorXd& x, double h = 1e-6) {
-  Eigen::VectorXd g(x.size()), xp = x, xm = x;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    xp[i] = x[i] + h;
-    xm[i] = x[i] - h;
-    g[i] = (f(xp) - f(xm)) / (2.0 * h);
-    xp[i] = xm[i] = x[i];
-  }
-  return g;
-}
-
-/// Central-difference Jacobian of a vector function f(x) (the Hessian when f is a gradient).
-template <typename Function>
-Eigen::MatrixXd fd_jacobian(Function f, const Eigen::VectorXd& x, double h = 1e-6) {
-  Eigen::VectorXd xp = x, xm = x;
-  Eigen::MatrixXd J;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    xp[i] = x[i] + h;
-    xm[i] = x[i] - h;
-    const Eigen::VectorXd column = (f(xp) - f(xm)) / (2.0 * h);
-    if (i == 0) J.resize(column.size(), x.size());
-    J.col(i) = column;
-    xp[i] = xm[i] = x[i];
-  }
-  return J;
-}
-
-/// ||a - b|| relative to max(||a||, ||b||, floor).
-inline double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double floor = 1e-10) {
-  return (a - b).norm() / std::max({a.norm(), b.norm(), floor});
-}
 
 /// Vertex-major flattening (x0 y0 z0 x1 ...) of #V×3 positions, and back.
 inline Eigen::VectorXd flatten(const MatrixX3d& V) {
@@ -66,9 +31,9 @@ void check_position_energy(const Energy& energy, const Eigen::VectorXd& x, doubl
   const double value = energy.gradient(unflatten(x), g);
   CHECK(value == Approx(f(x)).epsilon(1e-12));
   CHECK(value > 0.0);
-  CHECK(relative_error(g, fd_gradient(f, x)) < tolerance);
+  CHECK(fd_matches(g, fd_gradient(f, x), tolerance));
   const Eigen::MatrixXd H = energy.hessian(unflatten(x), false);
-  CHECK(relative_error(H, fd_jacobian(grad, x)) < tolerance);
+  CHECK(fd_matches(H, fd_hessian(grad, x), tolerance));
   const Eigen::MatrixXd P = energy.hessian(unflatten(x), true);
   CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(P).eigenvalues().minCoeff() >= -1e-12 * P.norm());
 }
