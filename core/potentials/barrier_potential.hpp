@@ -3,6 +3,7 @@
 #include <Eigen/SparseCore>
 
 #include "core/candidates/candidates.hpp"
+#include "core/distance/stencil.hpp"
 
 namespace gr {
 
@@ -31,6 +32,17 @@ class BarrierPotential {
   double minimum_distance(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
 
  private:
+  /// One pair's energy; `active` when 0 < d² < dhat² (the pair then has derivatives).
+  struct PairEnergy {
+    double value;
+    bool active;
+  };
+  /// Candidate k of the stacked list (point–triangle first, then edge–edge): its energy
+  /// and, when active and asked, its gradient and Hessian on the 12-stencil.
+  PairEnergy pair_energy(const Candidates& candidates, std::size_t k,
+                         const Eigen::Ref<const MatrixX3d>& V, Vector12d* gradient,
+                         Matrix12d* hessian) const;
+
   double dhat_;
   MatrixX3d rest_vertices_;
 };

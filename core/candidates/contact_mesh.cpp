@@ -1,0 +1,67 @@
+#include "core/candidates/contact_mesh.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
+#include "core/common/errors.hpp"
+
+namespace gr {
+namespace {
+
+void check_faces(const MatrixX3i& faces, Eigen::Index vertex_count, const std::string& what) {
+  if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= vertex_count))
+    throw InputError("", 0, what + " face refers to a vertex out of range");
+}
+
+}  // namespace
+
+ContactMesh ContactMesh::build(const TriangleMesh& garment, const TriangleMesh& avatar,
+                               bool self_contact, const std::vector<int>& avatar_faces_used) {
+  check_faces(garment.faces, garment.vertices.rows(), "garment");
+  check_faces(avatar.faces, avatar.vertices.rows(), "avatar");
+  ContactMesh mesh;
+  mesh.garment_vertex_count = static_cast<int>(garment.vertices.rows());
+  mesh.avatar_vertex_count = static_cast<int>(avatar.vertices.rows());
+  mesh.self_contact = self_contact;
+  mesh.garment_faces = garment.faces;
+  mesh.garment_edges = unique_edges(garment.faces);
+
+  if (avatar_faces_used.empty()) {
+    mesh.avatar_faces = avatar.faces.array() + mesh.garment_vertex_count;
+  } else {
+    mesh.avatar_faces.resize(static_cast<Eigen::Index>(avatar_faces_used.size()), 3);
+    for (std::size_t i = 0; i < avatar_faces_used.size(); ++i) {
+      const int f = avatar_faces_used[i];
+      if (f < 0 || f >= avatar.faces.rows())
+        throw InputError("", 0, "avatar face " + std::to_string(f) + " selected for contact does not exist");
+      mesh.avatar_faces.row(static_cast<Eigen::Index>(i)) = avatar.faces.row(f).array() + mesh.garment_vertex_count;
+    }
+  }
+  mesh.avatar_edges = unique_edges(mesh.avatar_faces);
+  return mesh;
+}
+
+MatrixX2i unique_edges(const Eigen::Ref<const MatrixX3i>& faces) {
+  // One 64-bit key per directed-to-undirected edge, sorted and deduplicated.
+  std::vector<std::uint64_t> keys;
+  keys.reserve(static_cast<std::size_t>(faces.rows()) * 3);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<std::uint32_t>(faces(f, k));
+      const auto b = static_cast<std::uint32_t>(faces(f, (k + 1) % 3));
+      if (a == b) continue;
+      keys.push_back(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b));
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  MatrixX2i edges(static_cast<Eigen::Index>(keys.size()), 2);
+  for (std::size_t e = 0; e < keys.size(); ++e) {
+    edges(static_cast<Eigen::Index>(e), 0) = static_cast<int>(keys[e] >> 32);
+    edges(static_cast<Eigen::Index>(e), 1) = static_cast<int>(keys[e] & 0xffffffffu);
+  }
+  return edges;
+}
+
+}  // namespace gr

@@ -1,0 +1,78 @@
+#include "core/ccd/ccd.hpp"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "core/ccd/additive_ccd.hpp"
+
+namespace gr {
+namespace {
+
+/// Euclidean gap between the boxes swept by two vertex groups (0 when they overlap).
+double swept_box_gap(const std::array<Vector3d, 4>& x0, const std::array<Vector3d, 4>& x1,
+                     int first_of_second) {
+  Eigen::AlignedBox3d a, b;
+  for (int i = 0; i < 4; ++i) {
+    Eigen::AlignedBox3d& box = i < first_of_second ? a : b;
+    box.extend(x0[i]);
+    box.extend(x1[i]);
+  }
+  const Vector3d gap = (a.min() - b.max()).cwiseMax(b.min() - a.max()).cwiseMax(0.0);
+  return gap.norm();
+}
+
+/// Step bound for candidate k (point–triangle first, then edge–edge), at most t_max.
+double pair_step(const Candidates& candidates, std::size_t k, const Eigen::Ref<const MatrixX3d>& V0,
+                 const Eigen::Ref<const MatrixX3d>& V1, const CcdOptions& options, double t_max) {
+  const bool edge_edge = k >= candidates.point_triangle.size();
+  std::array<int, 4> ids;
+  if (!edge_edge) {
+    const PointTriangleCandidate& c = candidates.point_triangle[k];
+    ids = {c.point, c.triangle[0], c.triangle[1], c.triangle[2]};
+  } else {
+    const EdgeEdgeCandidate& c = candidates.edge_edge[k - candidates.point_triangle.size()];
+    ids = {c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]};
+  }
+  std::array<Vector3d, 4> x0, x1;
+  for (int i = 0; i < 4; ++i) {
+    x0[i] = V0.row(ids[i]).transpose();
+    x1[i] = V1.row(ids[i]).transpose();
+  }
+  // Swept boxes further apart than the absolute separation and than the starting
+  // distance's separation cannot come that close: no narrow phase needed.
+  const double gap = swept_box_gap(x0, x1, edge_edge ? 2 : 1);
+  if (gap > options.min_separation && gap > 0.0) {
+    const double d0_upper = (x0[0] - x0[edge_edge ? 2 : 1]).norm();  // any point pair bounds d0
+    if (gap >= options.min_separation_ratio * d0_upper) return t_max;
+  }
+  return edge_edge ? edge_edge_ccd(x0, x1, options, t_max) : point_triangle_ccd(x0, x1, options, t_max);
+}
+
+}  // namespace
+
+double max_step(const Candidates& swept_candidates, const Eigen::Ref<const MatrixX3d>& V0,
+                const Eigen::Ref<const MatrixX3d>& V1, const CcdOptions& options) {
+  if (V0.rows() != V1.rows())
+    throw std::invalid_argument("CCD start and end positions have different vertex counts");
+  if (!(options.min_separation_ratio > 0.0 && options.min_separation_ratio < 1.0) ||
+      !(options.min_separation >= 0.0) || options.max_iterations < 1)
+    throw std::invalid_argument(
+        "CCD options: min_separation_ratio must be in (0, 1), min_separation >= 0, "
+        "max_iterations >= 1");
+  // Each task passes its running minimum down as the pair's t_max: a pair stops as soon
+  // as it is known not to lower the minimum (the result is the same in any order).
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, swept_candidates.size(), 64), 1.0,
+      [&](const tbb::blocked_range<std::size_t>& range, double step) {
+        for (std::size_t k = range.begin(); k != range.end() && step > 0.0; ++k)
+          step = std::min(step, pair_step(swept_candidates, k, V0, V1, options, step));
+        return step;
+      },
+      [](double a, double b) { return std::min(a, b); });
+}
+
+}  // namespace gr

@@ -1,0 +1,103 @@
+#include "core/energies/fit_energy.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace gr {
+
+TriangleQuadrature TriangleQuadrature::with_points(int count) {
+  TriangleQuadrature rule;
+  const auto add_orbit = [&rule](double a, double b, double weight) {
+    // The three permutations of (a, b, b).
+    rule.barycentric.emplace_back(a, b, b);
+    rule.barycentric.emplace_back(b, a, b);
+    rule.barycentric.emplace_back(b, b, a);
+    rule.weights.insert(rule.weights.end(), 3, weight);
+  };
+  switch (count) {
+    case 1:
+      rule.barycentric.emplace_back(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0);
+      rule.weights.push_back(1.0);
+      break;
+    case 3:
+      add_orbit(2.0 / 3.0, 1.0 / 6.0, 1.0 / 3.0);
+      break;
+    case 6:  // Strang and Fix / Dunavant degree-4 rule.
+      add_orbit(0.108103018168070, 0.445948490915965, 0.223381589678011);
+      add_orbit(0.816847572980459, 0.091576213509771, 0.109951743655322);
+      break;
+    default:
+      throw std::invalid_argument("fit samples per face must be 1, 3 or 6, not " +
+                                  std::to_string(count));
+  }
+  return rule;
+}
+
+FitEnergy::FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit,
+                     const DistanceField& field, int samples_per_face, const DofLayout& layout)
+    : field_(&field), quadrature_(TriangleQuadrature::with_points(samples_per_face)) {
+  std::vector<char> listed(static_cast<std::size_t>(rest.vertices.rows()), 0);
+  for (int v : no_fit)
+    if (v >= 0 && v < rest.vertices.rows()) listed[static_cast<std::size_t>(v)] = 1;
+  std::vector<StencilDofs<kStencilSize>> dofs;
+  for (int f = 0; f < rest.faces.rows(); ++f) {
+    const std::array<int, 3> face = {rest.faces(f, 0), rest.faces(f, 1), rest.faces(f, 2)};
+    if (listed[face[0]] && listed[face[1]] && listed[face[2]]) continue;
+    const Vector3d a = rest.vertices.row(face[0]).transpose();
+    const Vector3d b = rest.vertices.row(face[1]).transpose();
+    const Vector3d c = rest.vertices.row(face[2]).transpose();
+    faces_.push_back(face);
+    rest_areas_.push_back(0.5 * (b - a).cross(c - a).norm());
+    StencilDofs<kStencilSize> d;
+    for (int v = 0; v < 3; ++v)
+      for (int axis = 0; axis < 3; ++axis) d[3 * v + axis] = layout.vertex_dof(face[v], axis);
+    dofs.push_back(d);
+  }
+  assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
+}
+
+double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, LocalVector* g,
+                          LocalMatrix* h, bool project_psd) const {
+  const auto& f = faces_[static_cast<std::size_t>(face)];
+  const double area = rest_areas_[static_cast<std::size_t>(face)];
+  double value = 0.0;
+  for (std::size_t q = 0; q < quadrature_.weights.size(); ++q) {
+    const Vector3d& b = quadrature_.barycentric[q];
+    const Vector3d p = b[0] * V.row(f[0]).transpose() + b[1] * V.row(f[1]).transpose() +
+                       b[2] * V.row(f[2]).transpose();
+    Vector3d grad_phi;
+    Eigen::Matrix3d hess_phi;
+    const double phi = field_->evaluate(p, g || h ? &grad_phi : nullptr, h ? &hess_phi : nullptr);
+    if (phi <= 0.0) continue;
+    const double w = area * quadrature_.weights[q];
+    value += w * phi * phi;
+    if (g)
+      for (int v = 0; v < 3; ++v) g->segment<3>(3 * v) += 2.0 * w * phi * b[v] * grad_phi;
+    if (h) {
+      Eigen::Matrix3d point_hessian = 2.0 * w * (grad_phi * grad_phi.transpose() + phi * hess_phi);
+      if (project_psd) point_hessian = project_to_psd(point_hessian);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) h->block<3, 3>(3 * i, 3 * j) += b[i] * b[j] * point_hessian;
+    }
+  }
+  return value;
+}
+
+double FitEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
+  return assembly_.value([&](int f) { return element(f, V, nullptr, nullptr, false); });
+}
+
+double FitEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const {
+  return assembly_.gradient([&](int f, LocalVector& g) { return element(f, V, &g, nullptr, false); },
+                            gradient);
+}
+
+const Eigen::SparseMatrix<double>& FitEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
+                                                      bool project_psd) const {
+  // The per-point projection already makes each block PSD; the assembly need not redo it.
+  return assembly_.hessian(
+      [&](int f, LocalMatrix& h) { element(f, V, nullptr, &h, project_psd); }, false);
+}
+
+}  // namespace gr

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "core/energies/distance_field.hpp"
+#include "core/energies/dof_layout.hpp"
+#include "core/energies/stencil_assembly.hpp"
+
+namespace gr {
+
+/// A symmetric quadrature rule on a triangle: barycentric points and weights summing to 1.
+struct TriangleQuadrature {
+  std::vector<Eigen::Vector3d> barycentric;
+  std::vector<double> weights;
+
+  /// Rules with 1 (centroid), 3 (degree 2) or 6 (degree 4) points.
+  /// @throw std::invalid_argument for any other count.
+  static TriangleQuadrature with_points(int count);
+};
+
+/// L_fit (unweighted): sum over fit faces f and quadrature points p of
+/// rest_area_f · weight_p · max(phi(p), 0)^2, phi the avatar's signed distance (positive
+/// outside). A face is no-fit, and left out, when its three vertices are all listed.
+/// Units: area × length^2 in normalized scene units; the caller multiplies by w_fit.
+/// The Hessian at a point with phi > 0 is 2 (∇phi ∇phiᵀ + phi ∇²phi) ⊗ (b bᵀ) for the
+/// point's barycentric weights b; with `project_psd` the 3×3 factor is projected to PSD
+/// (then the Kronecker product, and the face's sum, are PSD too).
+class FitEnergy {
+ public:
+  static constexpr int kStencilSize = 9;
+  using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
+  using LocalMatrix = Eigen::Matrix<double, kStencilSize, kStencilSize>;
+
+  /// @param rest garment rest positions (#Vg×3) and faces (#Fg×3), for the rest areas.
+  /// @param no_fit garment vertex ids (any order, repeats allowed).
+  /// @param field must outlive this object; called from many threads at once.
+  /// @param samples_per_face 1, 3 or 6.
+  /// @throw std::invalid_argument for another sample count.
+  FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit, const DistanceField& field,
+            int samples_per_face, const DofLayout& layout);
+
+  /// Number of faces that fit (not no-fit).
+  int fit_face_count() const { return static_cast<int>(faces_.size()); }
+
+  double value(const Eigen::Ref<const MatrixX3d>& V) const;
+  double gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const;
+  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
+                                             bool project_psd = true) const;
+
+ private:
+  /// Value of one face and, when the pointers are not null, its gradient and Hessian.
+  double element(int face, const Eigen::Ref<const MatrixX3d>& V, LocalVector* g, LocalMatrix* h,
+                 bool project_psd) const;
+
+  std::vector<std::array<int, 3>> faces_;
+  std::vector<double> rest_areas_;
+  const DistanceField* field_;
+  TriangleQuadrature quadrature_;
+  StencilAssembly<kStencilSize> assembly_;
+};
+
+}  // namespace gr

@@ -1,0 +1,169 @@
+#include "core/energies/surface_shape_energy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace gr {
+namespace {
+
+using LocalVector = SurfaceShapeEnergy::LocalVector;
+using LocalMatrix = SurfaceShapeEnergy::LocalMatrix;
+using ReducedJacobian = Eigen::Matrix<double, 3, 9>;
+using ReducedMatrix = Eigen::Matrix<double, 9, 9>;
+using Reduction = Eigen::Matrix<double, 9, 12>;
+
+/// [v]×, so that cross_matrix(v) * u = v × u.
+Eigen::Matrix3d cross_matrix(const Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+/// T: local coordinates (x0, x1, x2, x3) → edge vectors (e, u1, u2) = (x1 - x0, x2 - x0,
+/// x3 - x0). The energy depends on q only through Tq (it is translation invariant).
+const Reduction& reduction() {
+  static const Reduction T = [] {
+    Reduction m = Reduction::Zero();
+    for (int k = 0; k < 3; ++k) {
+      m.block<3, 3>(3 * k, 0) = -Eigen::Matrix3d::Identity();
+      m.block<3, 3>(3 * k, 3 * (k + 1)) = Eigen::Matrix3d::Identity();
+    }
+    return m;
+  }();
+  return T;
+}
+
+/// r = r1 - r2 and, when asked, its 3×9 Jacobian with respect to (e, u1, u2).
+Vector3d reconstruction_difference(const SurfaceShapeEnergy::Element& el, const LocalVector& q,
+                                   ReducedJacobian* jacobian) {
+  const Vector3d x0 = q.segment<3>(0);
+  const Vector3d e = q.segment<3>(3) - x0, u1 = q.segment<3>(6) - x0, u2 = q.segment<3>(9) - x0;
+  const Vector3d& c1 = el.coefficients_first;
+  const Vector3d& c2 = el.coefficients_second;
+  const Vector3d r = (c1[0] - c2[0]) * e + c1[1] * u1 - c2[1] * u2 + c1[2] * e.cross(u1) -
+                     c2[2] * e.cross(u2);
+  if (jacobian) {
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    // d(e × u) = -[u]× de + [e]× du.
+    jacobian->block<3, 3>(0, 0) =
+        (c1[0] - c2[0]) * I - c1[2] * cross_matrix(u1) + c2[2] * cross_matrix(u2);
+    jacobian->block<3, 3>(0, 3) = c1[1] * I + c1[2] * cross_matrix(e);
+    jacobian->block<3, 3>(0, 6) = -c2[1] * I - c2[2] * cross_matrix(e);
+  }
+  return r;
+}
+
+}  // namespace
+
+SurfaceShapeEnergy::SurfaceShapeEnergy(const TriangleMesh& rest, const DofLayout& layout) {
+  // (smaller vertex, larger vertex, face, corner opposite the edge) for every face edge.
+  std::vector<std::tuple<int, int, int, int>> half_edges;
+  half_edges.reserve(static_cast<std::size_t>(rest.faces.rows()) * 3);
+  for (int f = 0; f < rest.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = rest.faces(f, (c + 1) % 3);
+      const int b = rest.faces(f, (c + 2) % 3);
+      half_edges.emplace_back(std::min(a, b), std::max(a, b), f, c);
+    }
+  std::sort(half_edges.begin(), half_edges.end());
+
+  const auto rest_point = [&](int v) -> Vector3d { return rest.vertices.row(v).transpose(); };
+  std::vector<StencilDofs<kStencilSize>> dofs;
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i;
+    while (j < half_edges.size() && std::get<0>(half_edges[j]) == std::get<0>(half_edges[i]) &&
+           std::get<1>(half_edges[j]) == std::get<1>(half_edges[i]))
+      ++j;
+    if (j - i == 2) {
+      const auto& [a, b, f1, c1] = half_edges[i];
+      const int f2 = std::get<2>(half_edges[i + 1]);
+      const int c2 = std::get<3>(half_edges[i + 1]);
+      Element el;
+      el.vertices = {a, b, rest.faces(f1, c1), rest.faces(f2, c2)};
+      const Vector3d x0 = rest_point(el.vertices[0]);
+      const Vector3d e = rest_point(el.vertices[1]) - x0;
+      const Vector3d u1 = rest_point(el.vertices[2]) - x0;
+      const Vector3d u2 = rest_point(el.vertices[3]) - x0;
+      const Vector3d n1 = e.cross(u1);
+      const Vector3d n2 = e.cross(u2);
+      const Vector3d w = u2 - u1;
+      // A frame whose normal is tiny against its edges cannot be inverted reliably.
+      constexpr double kMinimumSine = 1e-8;
+      const double scale = e.squaredNorm() + u1.squaredNorm() + u2.squaredNorm();
+      if (n1.norm() > kMinimumSine * scale && n2.norm() > kMinimumSine * scale) {
+        Eigen::Matrix3d frame1, frame2;
+        frame1 << e, u1, n1;
+        frame2 << e, u2, n2;
+        el.coefficients_first = frame1.partialPivLu().solve(w);
+        el.coefficients_second = frame2.partialPivLu().solve(w);
+        el.weight = (n1.norm() + n2.norm()) / 6.0;
+        elements_.push_back(el);
+        StencilDofs<kStencilSize> d;
+        for (int v = 0; v < 4; ++v)
+          for (int axis = 0; axis < 3; ++axis)
+            d[3 * v + axis] = layout.vertex_dof(el.vertices[v], axis);
+        dofs.push_back(d);
+      }
+    }
+    i = j;
+  }
+  assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
+}
+
+LocalVector SurfaceShapeEnergy::gather(int element, const Eigen::Ref<const MatrixX3d>& V) const {
+  LocalVector q;
+  const auto& vertices = elements_[static_cast<std::size_t>(element)].vertices;
+  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = V.row(vertices[v]).transpose();
+  return q;
+}
+
+double SurfaceShapeEnergy::element_value(const Element& element, const LocalVector& q) {
+  return element.weight * reconstruction_difference(element, q, nullptr).squaredNorm();
+}
+
+double SurfaceShapeEnergy::element_gradient(const Element& element, const LocalVector& q,
+                                            LocalVector& g) {
+  ReducedJacobian J;
+  const Vector3d r = reconstruction_difference(element, q, &J);
+  g = reduction().transpose() * (2.0 * element.weight * J.transpose() * r);
+  return element.weight * r.squaredNorm();
+}
+
+void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVector& q,
+                                         LocalMatrix& h, bool project_psd) {
+  ReducedJacobian J;
+  const Vector3d r = reconstruction_difference(element, q, &J);
+  ReducedMatrix reduced = J.transpose() * J;
+  // Second-order part: r·(e × u) = eᵀ B u with B = -[r]×, for (e, u1) and (e, u2).
+  const Eigen::Matrix3d B = -cross_matrix(r);
+  const double c1 = element.coefficients_first[2], c2 = element.coefficients_second[2];
+  reduced.block<3, 3>(0, 3) += c1 * B;
+  reduced.block<3, 3>(3, 0) += c1 * B.transpose();
+  reduced.block<3, 3>(0, 6) -= c2 * B;
+  reduced.block<3, 3>(6, 0) -= c2 * B.transpose();
+  reduced *= 2.0 * element.weight;
+  if (project_psd) reduced = project_to_psd(reduced);
+  h = reduction().transpose() * reduced * reduction();
+}
+
+double SurfaceShapeEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
+  return assembly_.value([&](int e) { return element_value(elements_[e], gather(e, V)); });
+}
+
+double SurfaceShapeEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V,
+                                    Eigen::VectorXd& gradient) const {
+  return assembly_.gradient(
+      [&](int e, LocalVector& g) { return element_gradient(elements_[e], gather(e, V), g); },
+      gradient);
+}
+
+const Eigen::SparseMatrix<double>& SurfaceShapeEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
+                                                               bool project_psd) const {
+  // Projected in element_hessian, on the 9 edge-vector coordinates.
+  return assembly_.hessian(
+      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V), h, project_psd); },
+      false);
+}
+
+}  // namespace gr

@@ -1,0 +1,16 @@
+#include "core/fit/garment_fit.hpp"
+
+namespace gr {
+
+FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
+                      const RetargetParameters& parameters, const NewtonCallback& on_newton_step) {
+  GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kFit);
+  Eigen::VectorXd x = problem.layout().pack(1.0, inflated);
+  ProjectedNewton newton(parameters.newton);
+  FitResult result;
+  result.solve = newton.minimize(problem, x, on_newton_step);
+  result.garment = problem.layout().garment(x);
+  return result;
+}
+
+}  // namespace gr

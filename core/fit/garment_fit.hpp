@@ -1,0 +1,21 @@
+#pragma once
+
+#include "core/inflation/garment_problem.hpp"
+
+namespace gr {
+
+struct FitResult {
+  NewtonResult solve;   ///< status, iterations, energy; check solve.converged()
+  MatrixX3d garment;    ///< #Vg×3, the last accepted point whatever the status
+};
+
+/// Step 3: t fixed at 1, one projected Newton solve on the garment vertices with L_surf
+/// (rest shape: the initial garment scene.garment) + L_contact + L_pos at t = 1 (with
+/// skeletons) + w_fit L_fit.
+/// @param inflated #Vg×3, the inflation's result: intersection free against A.
+/// @throw std::invalid_argument when scene.distance_field is null or the sample count is
+///        not 1, 3 or 6; InputError as GarmentProblem's constructor.
+FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
+                      const RetargetParameters& parameters, const NewtonCallback& on_newton_step = {});
+
+}  // namespace gr

@@ -1,0 +1,81 @@
+#include "core/inflation/avatar_inflation.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace gr {
+
+const char* to_string(InflationStatus status) {
+  switch (status) {
+    case InflationStatus::kSnapped: return "snapped";
+    case InflationStatus::kRoundLimit: return "round limit";
+    case InflationStatus::kSolverFailure: return "solver failure";
+  }
+  return "unknown";
+}
+
+InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
+                               const InflationCallback& on_round,
+                               const NewtonCallback& on_newton_step) {
+  const auto start = std::chrono::steady_clock::now();
+  GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
+  const DofLayout& layout = problem.layout();
+  AvatarConstraint& al = problem.constraint();
+  ProjectedNewton newton(parameters.newton);
+
+  const Eigen::VectorXd initial = layout.pack(0.0, scene.garment.vertices);
+  Eigen::VectorXd x = initial;
+  InflationResult result;
+  const auto finish = [&](InflationStatus status, std::string message) {
+    result.status = status;
+    result.message = std::move(message);
+    result.garment = layout.garment(x);
+    result.t = layout.t(x);
+    result.lambda1 = al.lambda1;
+    result.lambda2 = al.lambda2;
+    result.elapsed_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+
+  while (result.rounds < parameters.max_al_rounds) {
+    ++result.rounds;
+    const NewtonResult solve = newton.minimize(problem, x, on_newton_step);
+    result.newton_iterations += solve.iterations;
+    if (solve.status == SolverStatus::kNonFiniteEnergy)
+      return finish(InflationStatus::kSolverFailure,
+                    fmt::format("round {}: {}", result.rounds, solve.message));
+
+    InflationRound round{result.rounds, layout.t(x), 0.0, 0.0, 0.0, false, false, solve};
+    round.eta = 1.0 - std::sqrt(std::abs(1.0 - round.t));
+    if (round.eta < 0.0) {
+      x = initial;
+      al.lambda1 *= 2.0;
+      round.reset = true;
+      ++result.resets;
+    }
+    const double t = layout.t(x);
+    if (round.eta < parameters.eta_target && al.lambda1 < parameters.max_lambda1)
+      al.lambda1 *= 2.0;
+    else
+      al.update_multiplier(t);
+    round.lambda1 = al.lambda1;
+    round.lambda2 = al.lambda2;
+    round.snapped = problem.is_valid_snapping(x);
+    if (on_round) on_round(round);
+    if (round.snapped) {
+      result.t_before_snap = t;
+      if (layout.t_free) x[layout.t_index()] = 1.0;
+      return finish(InflationStatus::kSnapped,
+                    fmt::format("snapped to t = 1 from t = {:.9g} after {} rounds ({} Newton steps)",
+                                t, result.rounds, result.newton_iterations));
+    }
+  }
+  return finish(InflationStatus::kRoundLimit,
+                fmt::format("no collision-free snap to t = 1 after {} rounds (t = {:.6g})",
+                            result.rounds, layout.t(x)));
+}
+
+}  // namespace gr

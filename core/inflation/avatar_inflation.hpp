@@ -1,0 +1,57 @@
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "core/inflation/garment_problem.hpp"
+
+namespace gr {
+
+enum class InflationStatus {
+  kSnapped,          ///< t reached 1 exactly with a collision-free snap
+  kRoundLimit,       ///< max_al_rounds Newton solves without a valid snap
+  kSolverFailure,    ///< a Newton solve met a non-finite energy
+};
+
+const char* to_string(InflationStatus status);
+
+/// Reported after each augmented Lagrangian round (one Newton solve).
+struct InflationRound {
+  int round;                 ///< 1-based
+  double t;                  ///< after the solve (before any reset)
+  double eta;                ///< 1 - sqrt(|1 - t|)
+  double lambda1, lambda2;   ///< after this round's update
+  bool reset;                ///< eta < 0: garment and t went back to the start
+  bool snapped;              ///< the snap to t = 1 is collision free
+  NewtonResult solve;
+};
+
+using InflationCallback = std::function<void(const InflationRound&)>;
+
+struct InflationResult {
+  InflationStatus status = InflationStatus::kRoundLimit;
+  MatrixX3d garment;         ///< #Vg×3; with kSnapped, free of the avatar A at t = 1
+  double t = 0.0;            ///< 1 exactly when snapped; else the last t
+  double t_before_snap = 0.0;
+  int rounds = 0;
+  int newton_iterations = 0; ///< summed over rounds
+  int resets = 0;
+  double lambda1 = 0.0, lambda2 = 0.0;
+  double elapsed_seconds = 0.0;
+  std::string message;
+  bool succeeded() const { return status == InflationStatus::kSnapped; }
+};
+
+/// Step 2, Algorithm 1: augmented Lagrangian on t = 1 over x = [t, Vg], starting from the
+/// initial garment and t = 0 (the shrunk avatar). Each round runs projected Newton with
+/// lambda1, lambda2 fixed, then: eta = 1 - sqrt(|1 - t|); when eta < 0 the garment and t
+/// go back to the start and lambda1 doubles; then lambda1 doubles again while eta < 0.99
+/// and lambda1 < 1e6, else lambda2 += lambda1 (1 - t). The loop ends when snapping t to
+/// 1 (avatar A(t) → A, garment still) is collision free by CCD; t is then set to 1.
+/// @pre the initial garment and A0 are intersection free (the shrink step's invariant).
+/// @throw std::invalid_argument, InputError as GarmentProblem's constructor.
+InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
+                               const InflationCallback& on_round = {},
+                               const NewtonCallback& on_newton_step = {});
+
+}  // namespace gr

@@ -1,0 +1,123 @@
+#include "core/inflation/garment_problem.hpp"
+
+#include <stdexcept>
+
+#include "core/mesh/boundary_loops.hpp"
+
+namespace gr {
+namespace {
+
+DofLayout layout_for(const GarmentScene& scene, GarmentProblem::Stage stage) {
+  DofLayout layout;
+  layout.garment_vertex_count = static_cast<int>(scene.garment.vertices.rows());
+  layout.t_free = stage == GarmentProblem::Stage::kInflation;
+  layout.fixed_t = 1.0;
+  return layout;
+}
+
+const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage stage) {
+  if (scene.shrunk_avatar.rows() != scene.avatar.vertices.rows())
+    throw std::invalid_argument("the shrunk avatar must have the target avatar's vertex count");
+  if (stage == GarmentProblem::Stage::kFit && !scene.distance_field)
+    throw std::invalid_argument("the fit step needs the avatar's distance field");
+  return scene;
+}
+
+}  // namespace
+
+GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters,
+                               Stage stage)
+    : stage_(stage),
+      parameters_(parameters),
+      layout_(layout_for(checked(scene, stage), stage)),
+      surface_(scene.garment, layout_),
+      contact_(ContactMesh::build(scene.garment, scene.avatar, parameters.self_contact,
+                                  scene.avatar_faces_used),
+               scene.garment.vertices, scene.shrunk_avatar, scene.avatar.vertices, parameters.dhat,
+               layout_) {
+  if (scene.skeletons) {
+    const SkeletonMotion& s = *scene.skeletons;
+    loop_bones_ = assign_loop_bones(scene.garment.vertices, boundary_loops(scene.garment.faces),
+                                    s.source_joints, s.target_joints, s.bones, s.skirt);
+    position_.emplace(scene.garment.vertices, loop_bones_, layout_);
+  }
+  if (stage == Stage::kFit)
+    fit_.emplace(scene.garment, scene.no_fit, *scene.distance_field,
+                 parameters.fit_samples_per_face, layout_);
+  constraint_.displacement_sq = (scene.avatar.vertices - scene.shrunk_avatar).squaredNorm();
+  constraint_.lambda1 = parameters.initial_lambda1;
+}
+
+double GarmentProblem::value(const Eigen::VectorXd& x) {
+  const auto V = layout_.garment(x);
+  const double t = layout_.t(x);
+  double total = parameters_.w_surf * surface_.value(V);
+  total += parameters_.w_contact * contact_.value(V, t);
+  if (position_) total += parameters_.w_pos * position_->value(V, t);
+  if (fit_) total += parameters_.w_fit * fit_->value(V);
+  if (layout_.t_free) total += constraint_.value(t);
+  return total;
+}
+
+void GarmentProblem::gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) {
+  const auto V = layout_.garment(x);
+  const double t = layout_.t(x);
+  surface_.gradient(V, gradient);
+  gradient *= parameters_.w_surf;
+  contact_.gradient(V, t, term_gradient_);
+  gradient += parameters_.w_contact * term_gradient_;
+  if (position_) {
+    position_->gradient(V, t, term_gradient_);
+    gradient += parameters_.w_pos * term_gradient_;
+  }
+  if (fit_) {
+    fit_->gradient(V, term_gradient_);
+    gradient += parameters_.w_fit * term_gradient_;
+  }
+  if (layout_.t_free) gradient[layout_.t_index()] += constraint_.derivative(t);
+}
+
+void GarmentProblem::hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian,
+                                bool project_psd) {
+  const auto V = layout_.garment(x);
+  const double t = layout_.t(x);
+  hessian = parameters_.w_surf * surface_.hessian(V, project_psd);
+  hessian += parameters_.w_contact * contact_.hessian(V, t, project_psd);
+  if (position_) hessian += parameters_.w_pos * position_->hessian(V, t, project_psd);
+  if (fit_) hessian += parameters_.w_fit * fit_->hessian(V, project_psd);
+  // The surface term's pattern holds the whole diagonal, so this entry exists.
+  if (layout_.t_free) hessian.coeffRef(layout_.t_index(), layout_.t_index()) += constraint_.second_derivative();
+  hessian.makeCompressed();
+}
+
+void GarmentProblem::solution_changed(const Eigen::VectorXd& x) {
+  contact_.update_candidates(layout_.garment(x), layout_.t(x));
+}
+
+double GarmentProblem::max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  const Eigen::VectorXd end = x + dx;
+  return contact_.update_swept_candidates(layout_.garment(x), layout_.t(x), layout_.garment(end),
+                                          layout_.t(end), parameters_.ccd);
+}
+
+double GarmentProblem::step_length(const Eigen::VectorXd& dx) const {
+  const auto motion = layout_.garment(dx);
+  double length = motion.rows() > 0 ? motion.rowwise().norm().maxCoeff() : 0.0;
+  if (layout_.t_free) length = std::max(length, std::abs(layout_.t(dx)) * contact_.max_displacement());
+  return length;
+}
+
+bool GarmentProblem::is_valid_snapping(const Eigen::VectorXd& x) {
+  const auto V = layout_.garment(x);
+  const double t = layout_.t(x);
+  const double step = contact_.update_swept_candidates(V, t, V, 1.0, parameters_.ccd);
+  contact_.update_candidates(V, t);
+  return step >= 1.0;
+}
+
+double GarmentProblem::minimum_distance(const Eigen::VectorXd& x) {
+  contact_.update_candidates(layout_.garment(x), layout_.t(x));
+  return contact_.minimum_distance(layout_.garment(x), layout_.t(x));
+}
+
+}  // namespace gr

@@ -1,0 +1,90 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/energies/contact_energy.hpp"
+#include "core/energies/distance_field.hpp"
+#include "core/energies/fit_energy.hpp"
+#include "core/energies/position_energy.hpp"
+#include "core/energies/surface_shape_energy.hpp"
+#include "core/inflation/avatar_constraint.hpp"
+#include "core/inflation/retarget_parameters.hpp"
+#include "core/solver/problem.hpp"
+
+namespace gr {
+
+/// Source and target skeletons (same joints and bones), normalized scene units.
+struct SkeletonMotion {
+  MatrixX3d source_joints;  ///< #J×3, the frame of the garment (t = 0)
+  MatrixX3d target_joints;  ///< #J×3, the frame of the avatar (t = 1)
+  MatrixX2i bones;          ///< #B×2
+  bool skirt = false;       ///< loops use a virtual bone between the legs
+};
+
+/// What the solver needs of a scene, all in normalized scene units.
+struct GarmentScene {
+  TriangleMesh garment;        ///< initial garment: start point and rest shape (#Vg×3, #Fg×3)
+  TriangleMesh avatar;         ///< target avatar A (#Va×3, #Fa×3)
+  MatrixX3d shrunk_avatar;     ///< A0 (#Va×3), A's connectivity, free of the garment
+  std::vector<int> avatar_faces_used;  ///< avatar faces the garment can reach; empty: all
+  std::optional<SkeletonMotion> skeletons;  ///< L_pos only when given
+  std::vector<int> no_fit;     ///< garment vertex ids
+  const DistanceField* distance_field = nullptr;  ///< the avatar's SDF; needed by the fit
+};
+
+/// The objective of Step 2 (inflation: x = [t, Vg], L_surf + L_contact + L_pos + the AL on
+/// t = 1) or Step 3 (fit: x = Vg with t = 1, L_surf + L_contact + L_pos + L_fit), with the
+/// contact candidates kept current and CCD bounding every step over the whole motion
+/// (garment and avatar). Not safe for concurrent use.
+class GarmentProblem : public Problem {
+ public:
+  enum class Stage { kInflation, kFit };
+
+  /// @throw std::invalid_argument when A0 and A differ in size, or the fit stage has no
+  ///        distance field, or the fit sample count is not 1, 3 or 6.
+  /// @throw InputError when a skirt's skeleton has no recognisable legs.
+  GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters, Stage stage);
+
+  Stage stage() const { return stage_; }
+  const DofLayout& layout() const { return layout_; }
+  AvatarConstraint& constraint() { return constraint_; }
+  const AvatarConstraint& constraint() const { return constraint_; }
+  const ContactEnergy& contact() const { return contact_; }
+  /// Boundary loops held by L_pos (empty without skeletons).
+  const std::vector<LoopBone>& loop_bones() const { return loop_bones_; }
+
+  /// Whether snapping t to 1 (avatar A(t) → A, garment still) is collision free by CCD.
+  bool is_valid_snapping(const Eigen::VectorXd& x);
+  /// Smallest garment–avatar/garment–garment distance among pairs within dhat at x
+  /// (+inf when none is that close).
+  double minimum_distance(const Eigen::VectorXd& x);
+
+  int dof_count() const override { return layout_.dof_count(); }
+  double value(const Eigen::VectorXd& x) override;
+  void gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) override;
+  void hessian(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian) override {
+    hessian_of(x, hessian, true);
+  }
+  /// The Hessian with (project_psd) or without (the exact one) per-element projection.
+  void hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian, bool project_psd);
+  void solution_changed(const Eigen::VectorXd& x) override;
+  double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override;
+  /// The largest vertex motion of dx: garment vertices and, through t, avatar vertices.
+  double step_length(const Eigen::VectorXd& dx) const override;
+
+ private:
+  Stage stage_;
+  RetargetParameters parameters_;
+  DofLayout layout_;
+  SurfaceShapeEnergy surface_;
+  ContactEnergy contact_;
+  std::vector<LoopBone> loop_bones_;
+  std::optional<PositionEnergy> position_;
+  std::optional<FitEnergy> fit_;
+  AvatarConstraint constraint_;
+  Eigen::VectorXd term_gradient_;
+};
+
+}  // namespace gr

@@ -1,0 +1,29 @@
+#pragma once
+
+#include "core/ccd/ccd.hpp"
+#include "core/solver/projected_newton.hpp"
+
+namespace gr {
+
+/// Weights, tolerances and caps of the inflation (Step 2) and fit (Step 3). Defaults are
+/// the paper's (supplement 1.3); every length is in normalized scene units (body ≈ 2 tall).
+struct RetargetParameters {
+  double w_surf = 1.0;
+  double w_contact = 1e8;
+  double dhat = 0.002;        ///< barrier support (a distance)
+  double w_pos = 10.0;        ///< only used when skeletons are given
+  double w_fit = 2.0;         ///< fit step only
+  int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
+  bool self_contact = true;   ///< model garment–garment contact
+
+  NewtonOptions newton;       ///< eps_tol, step tolerance, iteration cap of each solve
+  CcdOptions ccd;
+
+  // Augmented Lagrangian (Algorithm 1).
+  double initial_lambda1 = 1.0;
+  double max_lambda1 = 1e6;       ///< lambda1 doubles while below this and eta < eta_target
+  double eta_target = 0.99;
+  int max_al_rounds = 60;         ///< Newton solves before giving up
+};
+
+}  // namespace gr

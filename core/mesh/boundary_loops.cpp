@@ -1,0 +1,42 @@
+#include "core/mesh/boundary_loops.hpp"
+
+#include <algorithm>
+#include <map>
+#include <utility>
+
+namespace gr {
+
+std::vector<std::vector<int>> boundary_loops(const Eigen::Ref<const MatrixX3i>& faces) {
+  // Count undirected edges; keep each face's directed edge.
+  std::map<std::pair<int, int>, int> count;
+  for (int f = 0; f < faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = faces(f, c), b = faces(f, (c + 1) % 3);
+      ++count[{std::min(a, b), std::max(a, b)}];
+    }
+  std::multimap<int, int> next;  // boundary edge a -> b in face orientation
+  for (int f = 0; f < faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = faces(f, c), b = faces(f, (c + 1) % 3);
+      if (count[{std::min(a, b), std::max(a, b)}] == 1) next.emplace(a, b);
+    }
+
+  std::vector<std::vector<int>> loops;
+  while (!next.empty()) {
+    std::vector<int> loop;
+    const int start = next.begin()->first;
+    int current = start;
+    for (;;) {
+      const auto it = next.find(current);
+      if (it == next.end()) break;
+      loop.push_back(current);
+      current = it->second;
+      next.erase(it);
+      if (current == start) break;
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+}  // namespace gr

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/common/types.hpp"
+
+namespace gr {
+
+/// A bone whose joints move linearly from the source skeleton (t = 0) to the target
+/// skeleton (t = 1): a(t) = source_a + t (target_a - source_a), b(t) likewise. Normalized
+/// scene units.
+struct MovingBone {
+  Vector3d source_a, source_b, target_a, target_b;
+
+  Vector3d a(double t) const { return source_a + t * (target_a - source_a); }
+  Vector3d b(double t) const { return source_b + t * (target_b - source_b); }
+};
+
+/// A garment boundary loop (hem, cuff, collar) and the bone its vertices are measured along.
+struct LoopBone {
+  std::vector<int> vertices;  ///< garment vertex ids along the loop
+  MovingBone bone;
+  int bone_index = -1;        ///< row of the skeleton's bones, or -1 for the virtual skirt bone
+};
+
+/// The hip and knee joints of the two legs, found from the bone graph alone: the legs are
+/// the two chains that hang from the one branching joint (three or more bones) from which
+/// exactly two leaf chains leave, each at least two joints long; the joint next to the
+/// branching joint is the hip, the one after it the knee. When several branching joints
+/// qualify, the one whose two chains hold the most joints wins.
+struct LegJoints {
+  int hips[2];
+  int knees[2];
+};
+
+/// @param bones #B×2 joint indices.
+/// @throw InputError when no branching joint has exactly two leaf chains of two or more
+///        joints (the skeleton has no recognisable legs), naming `skeleton_name`.
+LegJoints find_leg_joints(const Eigen::Ref<const MatrixX2i>& bones, int joint_count,
+                          const std::string& skeleton_name);
+
+/// Chooses the bone for each boundary loop of the garment, at t = 0 (source skeleton and
+/// initial garment, same frame). A loop's centre is the mean of its vertices and its normal
+/// Newell's normal. Without `skirt`: the bone closest to the centre (segment distance) among
+/// those whose direction is within 60 degrees of the normal (either sign); a loop with no
+/// such bone, or with a zero normal, gets none and is left out. With `skirt`: every loop
+/// takes the virtual bone from the midpoint of the hips to the midpoint of the knees (see
+/// find_leg_joints), which runs down between the legs.
+/// @param garment #Vg×3; source_joints, target_joints #J×3 (normalized scene units).
+/// @throw InputError from find_leg_joints when `skirt` and no legs are found.
+std::vector<LoopBone> assign_loop_bones(const Eigen::Ref<const MatrixX3d>& garment,
+                                        const std::vector<std::vector<int>>& loops,
+                                        const Eigen::Ref<const MatrixX3d>& source_joints,
+                                        const Eigen::Ref<const MatrixX3d>& target_joints,
+                                        const Eigen::Ref<const MatrixX2i>& bones, bool skirt);
+
+}  // namespace gr

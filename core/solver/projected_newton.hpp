@@ -1,0 +1,89 @@
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "core/solver/linear_solver.hpp"
+#include "core/solver/problem.hpp"
+
+namespace gr {
+
+/// How a solve ended. Only kConverged means the returned point meets the tolerances.
+enum class SolverStatus {
+  kConverged,        ///< gradient or Newton step below its tolerance
+  kIterationLimit,   ///< max_iterations accepted steps without converging
+  kNoDescent,        ///< no step along the search direction lowered the energy (or CCD allowed none)
+  kNonFiniteEnergy,  ///< the energy or gradient at the current point is not finite
+};
+
+const char* to_string(SolverStatus status);
+
+struct NewtonOptions {
+  /// Cap on accepted Newton steps.
+  int max_iterations = 1000;
+  /// eps_tol: converged when the RMS gradient ||g||_2 / sqrt(#dofs) is at most this (energy
+  /// per normalized length unit; RMS so that the test does not tighten with mesh size).
+  double gradient_tolerance = 1e-8;
+  /// Also converged when the full Newton step moves nothing by more than this
+  /// (Problem::step_length, normalized scene units): the quadratic model then places the
+  /// minimizer within this distance. Garment energies mix stiffnesses over eight orders of
+  /// magnitude (contact against shape), which makes a length the more meaningful test.
+  double step_tolerance = 1e-6;
+  /// Halvings of the step in the line search before giving up with kNoDescent.
+  int max_line_search_halvings = 50;
+  /// When the Cholesky factorization fails, retry with A + shift·I, shift starting at this
+  /// fraction of the mean absolute diagonal and growing 100× per retry; after
+  /// `shift_retries` failures take the gradient descent direction.
+  double first_shift = 1e-10;
+  int shift_retries = 3;
+};
+
+/// Reported after each accepted step.
+struct NewtonProgress {
+  int iteration;          ///< accepted steps so far
+  double energy;
+  double step;            ///< alpha of the accepted step (fraction of the Newton direction)
+  double gradient_norm;   ///< ||g||_2 at the point before the step
+  double elapsed_seconds; ///< since the solve started
+};
+
+using NewtonCallback = std::function<void(const NewtonProgress&)>;
+
+struct NewtonResult {
+  SolverStatus status = SolverStatus::kNoDescent;
+  int iterations = 0;            ///< accepted steps
+  double energy = 0.0;           ///< at the returned point
+  double gradient_norm = 0.0;    ///< ||g||_2 at the returned point
+  double newton_step_length = 0.0;  ///< step_length of the last Newton direction computed
+  int gradient_descent_steps = 0;   ///< directions taken from -g after factorization failures
+  double elapsed_seconds = 0.0;
+  std::string message;           ///< one line saying why the solve stopped
+  bool converged() const { return status == SolverStatus::kConverged; }
+};
+
+/// Projected Newton (Algorithm 2 of the supplement): Hessian from the problem (projected
+/// per element), direction from CHOLMOD, step bounded by the problem's max_step (CCD),
+/// halved until the energy does not increase, stop on the tolerances or the iteration cap.
+/// Keeps its factorization between solves, so repeated solves on one pattern reuse the
+/// symbolic analysis.
+class ProjectedNewton {
+ public:
+  explicit ProjectedNewton(NewtonOptions options = {}) : options_(options) {}
+
+  const NewtonOptions& options() const { return options_; }
+  NewtonOptions& options() { return options_; }
+  const LinearSolver& linear_solver() const { return linear_solver_; }
+
+  /// Minimizes from x; x is overwritten with the last accepted point whatever the status.
+  NewtonResult minimize(Problem& problem, Eigen::VectorXd& x, const NewtonCallback& progress = {});
+
+ private:
+  /// Newton direction -H⁻¹g, with diagonal shifts on failure; false when every attempt failed.
+  bool newton_direction(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
+                        Eigen::VectorXd& direction);
+
+  NewtonOptions options_;
+  LinearSolver linear_solver_;
+};
+
+}  // namespace gr

@@ -1,0 +1,218 @@
+#include <algorithm>
+#include <set>
+#include <tuple>
+
+#include <catch2/catch.hpp>
+
+#include "core/candidates/candidates.hpp"
+#include "core/common/errors.hpp"
+#include "core/distance/edge_edge_distance.hpp"
+#include "core/distance/point_triangle_distance.hpp"
+#include "core/io/obj_document.hpp"
+#include "core/mesh/simulation_mesh.hpp"
+#include "test_support.hpp"
+
+using gr::MatrixX3d;
+using gr::Vector3d;
+
+namespace {
+
+using Key = std::array<int, 4>;
+
+/// Candidate sets as keys; edge–edge pairs under both orders.
+struct CandidateKeys {
+  std::set<Key> point_triangle, edge_edge;
+  explicit CandidateKeys(const gr::Candidates& c) {
+    for (const auto& pt : c.point_triangle) point_triangle.insert({pt.point, pt.triangle[0], pt.triangle[1], pt.triangle[2]});
+    for (const auto& ee : c.edge_edge) {
+      edge_edge.insert({ee.edge_a[0], ee.edge_a[1], ee.edge_b[0], ee.edge_b[1]});
+      edge_edge.insert({ee.edge_b[0], ee.edge_b[1], ee.edge_a[0], ee.edge_a[1]});
+    }
+  }
+};
+
+gr::TriangleMesh load(const std::string& file) {
+  return gr::make_simulation_mesh(gr::read_obj(gr::test::shared_data(file))).mesh;
+}
+
+/// Garment box centre onto the avatar's, then both scaled by 2 / (avatar's largest side).
+/// With `match_size` the garment is first brought to the avatar's size: the files' units
+/// can differ by far more than the bodies do (the puffer is about 1.5 units wide, the
+/// goblin 0.06 units tall), and a garment 30 times the body's size touches nothing.
+void place(gr::TriangleMesh& garment, gr::TriangleMesh& avatar, bool match_size) {
+  const auto box = [](const MatrixX3d& V) {
+    return std::make_pair(V.colwise().minCoeff().eval(), V.colwise().maxCoeff().eval());
+  };
+  const auto [g_lo, g_hi] = box(garment.vertices);
+  const auto [a_lo, a_hi] = box(avatar.vertices);
+  const Eigen::RowVector3d a_centre = 0.5 * (a_lo + a_hi);
+  const double scale = 2.0 / (a_hi - a_lo).maxCoeff();
+  const double garment_scale = match_size ? 2.0 / (g_hi - g_lo).maxCoeff() : scale;
+  garment.vertices = ((garment.vertices.rowwise() - 0.5 * (g_lo + g_hi)) * garment_scale).eval();
+  avatar.vertices = ((avatar.vertices.rowwise() - a_centre) * scale).eval();
+}
+
+MatrixX3d stacked(const gr::TriangleMesh& garment, const gr::TriangleMesh& avatar) {
+  MatrixX3d V(garment.vertices.rows() + avatar.vertices.rows(), 3);
+  V << garment.vertices, avatar.vertices;
+  return V;
+}
+
+Vector3d row(const MatrixX3d& V, int i) { return V.row(i).transpose(); }
+
+bool face_has(const gr::MatrixX3i& F, Eigen::Index f, int v) {
+  return F(f, 0) == v || F(f, 1) == v || F(f, 2) == v;
+}
+
+/// Brute force over every `stride`-th query element: each pair within `radius` must be a
+/// candidate. Returns how many pairs were checked.
+std::size_t check_against_brute_force(const gr::ContactMesh& mesh, const MatrixX3d& V,
+                                      const gr::Candidates& candidates, double radius, int stride) {
+  const CandidateKeys keys(candidates);
+  const double r_sq = radius * radius;
+  std::size_t found = 0;
+  const auto point_vs_faces = [&](int v, const gr::MatrixX3i& F) {
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      if (face_has(F, f, v)) continue;
+      if (gr::point_triangle_distance_sq(row(V, v), row(V, F(f, 0)), row(V, F(f, 1)), row(V, F(f, 2))) >= r_sq)
+        continue;
+      ++found;
+      CAPTURE(v, f);
+      REQUIRE(keys.point_triangle.count({v, F(f, 0), F(f, 1), F(f, 2)}) == 1);
+    }
+  };
+  const auto edge_vs_edges = [&](Eigen::Index e, const gr::MatrixX2i& E) {
+    const gr::MatrixX2i& G = mesh.garment_edges;
+    for (Eigen::Index f = 0; f < E.rows(); ++f) {
+      if (G(e, 0) == E(f, 0) || G(e, 0) == E(f, 1) || G(e, 1) == E(f, 0) || G(e, 1) == E(f, 1)) continue;
+      if (gr::edge_edge_distance_sq(row(V, G(e, 0)), row(V, G(e, 1)), row(V, E(f, 0)), row(V, E(f, 1))) >= r_sq)
+        continue;
+      ++found;
+      CAPTURE(e, f);
+      REQUIRE(keys.edge_edge.count({G(e, 0), G(e, 1), E(f, 0), E(f, 1)}) == 1);
+    }
+  };
+  for (int v = 0; v < mesh.garment_vertex_count; v += stride) {
+    point_vs_faces(v, mesh.avatar_faces);
+    if (mesh.self_contact) point_vs_faces(v, mesh.garment_faces);
+  }
+  for (int v = mesh.garment_vertex_count; v < mesh.vertex_count(); v += stride) point_vs_faces(v, mesh.garment_faces);
+  for (Eigen::Index e = 0; e < mesh.garment_edges.rows(); e += stride) {
+    edge_vs_edges(e, mesh.avatar_edges);
+    if (mesh.self_contact) edge_vs_edges(e, mesh.garment_edges);
+  }
+  return found;
+}
+
+}  // namespace
+
+TEST_CASE("unique edges and the stacked contact mesh", "[candidates]") {
+  gr::TriangleMesh garment, avatar;
+  garment.vertices.setRandom(4, 3);
+  garment.faces.resize(2, 3);
+  garment.faces << 0, 1, 2, 2, 1, 3;
+  avatar.vertices.setRandom(5, 3);
+  avatar.faces.resize(3, 3);
+  avatar.faces << 0, 1, 2, 2, 3, 4, 0, 2, 4;
+
+  const gr::MatrixX2i edges = gr::unique_edges(garment.faces);
+  REQUIRE(edges.rows() == 5);
+  CHECK(edges.row(0) == Eigen::RowVector2i(0, 1));
+  CHECK(edges.row(4) == Eigen::RowVector2i(2, 3));
+  CHECK((edges.col(0).array() < edges.col(1).array()).all());
+
+  const gr::ContactMesh all = gr::ContactMesh::build(garment, avatar, true);
+  CHECK(all.vertex_count() == 9);
+  CHECK(all.avatar_faces.minCoeff() == 4);
+  CHECK(all.avatar_edges.rows() == 7);
+  const gr::ContactMesh some = gr::ContactMesh::build(garment, avatar, false, {1});
+  REQUIRE(some.avatar_faces.rows() == 1);
+  CHECK(some.avatar_faces.row(0) == Eigen::RowVector3i(6, 7, 8));
+  CHECK(some.avatar_edges.rows() == 3);
+  CHECK_FALSE(some.self_contact);
+  CHECK_THROWS_AS(gr::ContactMesh::build(garment, avatar, true, {3}), gr::InputError);
+  garment.faces(0, 0) = 4;
+  CHECK_THROWS_AS(gr::ContactMesh::build(garment, avatar, true), gr::InputError);
+}
+
+TEST_CASE("candidates: self pairs share no vertex, avatar pairs never appear", "[candidates]") {
+  // A garment strip folded onto itself above a flat avatar strip, all within the radius.
+  gr::TriangleMesh garment, avatar;
+  garment.vertices.resize(6, 3);
+  garment.vertices << 0, 0, 0.01, 1, 0, 0.01, 0, 1, 0.01, 1, 1, 0.01, 0, 0, 0.02, 1, 0, 0.02;
+  garment.faces.resize(3, 3);
+  garment.faces << 0, 1, 2, 2, 1, 3, 4, 5, 2;
+  avatar.vertices.resize(4, 3);
+  avatar.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0;
+  avatar.faces.resize(2, 3);
+  avatar.faces << 0, 1, 2, 2, 1, 3;
+  for (const bool self : {true, false}) {
+    const gr::ContactMesh mesh = gr::ContactMesh::build(garment, avatar, self);
+    const MatrixX3d V = stacked(garment, avatar);
+    const gr::Candidates c = gr::find_candidates(mesh, V, 0.05);
+    bool any_self = false;
+    for (const auto& pt : c.point_triangle) {
+      const bool point_on_garment = pt.point < 6, triangle_on_garment = pt.triangle[0] < 6;
+      CHECK((point_on_garment || triangle_on_garment));  // never avatar against avatar
+      CHECK(std::find(pt.triangle.begin(), pt.triangle.end(), pt.point) == pt.triangle.end());
+      any_self |= point_on_garment && triangle_on_garment;
+    }
+    for (const auto& ee : c.edge_edge) {
+      CHECK(ee.edge_a[0] < 6);
+      for (const int a : ee.edge_a)
+        for (const int b : ee.edge_b) CHECK(a != b);
+      any_self |= ee.edge_b[0] < 6;
+    }
+    CHECK(any_self == self);
+    check_against_brute_force(mesh, V, c, 0.05, 1);
+    CHECK_THROWS_AS(gr::find_candidates(mesh, V.topRows(5), 0.05), std::invalid_argument);
+  }
+}
+
+namespace {
+
+/// A shared scene placed for contact, stacked.
+struct SharedScene {
+  gr::ContactMesh mesh;
+  MatrixX3d V;
+};
+
+SharedScene shared_scene(const std::string& garment_file, const std::string& avatar_file, bool match_size) {
+  gr::TriangleMesh garment = load(garment_file), avatar = load(avatar_file);
+  place(garment, avatar, match_size);
+  return {gr::ContactMesh::build(garment, avatar, true), stacked(garment, avatar)};
+}
+
+SharedScene generated_scene() {
+  const auto [garment_file, avatar_file, match_size] = GENERATE(
+      std::make_tuple(std::string("garments/skirt/garment.obj"), std::string("avatars/foxgirl/avatar.obj"), false),
+      std::make_tuple(std::string("garments/puffer/garment.obj"), std::string("avatars/goblin/avatar.obj"), true));
+  CAPTURE(garment_file, avatar_file);
+  return shared_scene(garment_file, avatar_file, match_size);
+}
+
+}  // namespace
+
+TEST_CASE("broad phase finds every pair brute force finds on the shared scenes", "[candidates][shared]") {
+  const SharedScene scene = generated_scene();
+  const double radius = GENERATE(0.002, 0.02);
+  CAPTURE(radius);
+  const gr::Candidates candidates = gr::find_candidates(scene.mesh, scene.V, radius);
+  const std::size_t checked = check_against_brute_force(scene.mesh, scene.V, candidates, radius, 17);
+  CHECK(checked > 0);
+  if (radius > 0.01) CHECK(checked > 1000);
+}
+
+TEST_CASE("swept broad phase finds every pair close along the motion", "[candidates][shared]") {
+  // The garment moves sideways and the avatar shrinks: pairs that come close at the end
+  // or midway must be candidates of the swept query.
+  const SharedScene scene = generated_scene();
+  const double radius = 0.005;
+  MatrixX3d V1 = scene.V;
+  V1.topRows(scene.mesh.garment_vertex_count).col(1).array() += 0.01;
+  V1.bottomRows(scene.mesh.avatar_vertex_count) *= 0.99;
+  const gr::Candidates swept = gr::find_swept_candidates(scene.mesh, scene.V, V1, radius);
+  CHECK(check_against_brute_force(scene.mesh, V1, swept, radius, 17) > 0);
+  CHECK(check_against_brute_force(scene.mesh, (0.5 * (scene.V + V1)).eval(), swept, radius, 17) > 0);
+  CHECK(swept.size() >= gr::find_candidates(scene.mesh, scene.V, radius).size());
+}

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include "core/common/types.hpp"
+#include "core/finite_difference.hpp"
+
+namespace gr::test {
+
+/// Vertex-major flattening (x0 y0 z0 x1 ...) of #V×3 positions, and back.
+inline Eigen::VectorXd flatten(const MatrixX3d& V) {
+  return Eigen::Map<const Eigen::VectorXd>(V.data(), V.size());
+}
+inline MatrixX3d unflatten(const Eigen::VectorXd& x) {
+  return Eigen::Map<const MatrixX3d>(x.data(), x.size() / 3, 3);
+}
+
+/// Checks an energy of garment positions (value(V), gradient(V, g), hessian(V, project))
+/// at x (3#V, vertex-major): gradient and exact Hessian against central differences, the
+/// returned value against value(), and the projected Hessian positive semi-definite.
+template <typename Energy>
+void check_position_energy(const Energy& energy, const Eigen::VectorXd& x, double tolerance) {
+  const auto f = [&](const Eigen::VectorXd& y) { return energy.value(unflatten(y)); };
+  const auto grad = [&](const Eigen::VectorXd& y) {
+    Eigen::VectorXd g;
+    energy.gradient(unflatten(y), g);
+    return g;
+  };
+  Eigen::VectorXd g;
+  const double value = energy.gradient(unflatten(x), g);
+  CHECK(value == Approx(f(x)).epsilon(1e-12));
+  CHECK(value > 0.0);
+  CHECK(fd_matches(g, fd_gradient(f, x), tolerance));
+  const Eigen::MatrixXd H = energy.hessian(unflatten(x), false);
+  CHECK(fd_matches(H, fd_hessian(grad, x), tolerance));
+  const Eigen::MatrixXd P = energy.hessian(unflatten(x), true);
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(P).eigenvalues().minCoeff() >= -1e-12 * P.norm());
+}
+
+}  // namespace gr::test

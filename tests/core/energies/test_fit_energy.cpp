@@ -1,0 +1,73 @@
+#include <catch2/catch.hpp>
+
+#include <Eigen/Dense>
+
+#include "core/energies/fit_energy.hpp"
+#include "core/test_shapes.hpp"
+#include "core/energies/analytic_fields.hpp"
+#include "core/energies/energy_checks.hpp"
+
+using namespace gr;
+
+TEST_CASE("triangle quadrature rules integrate polynomials exactly", "[energies][fit]") {
+  const auto mean = [](const TriangleQuadrature& rule, int power) {
+    double sum = 0.0;
+    for (std::size_t q = 0; q < rule.weights.size(); ++q)
+      sum += rule.weights[q] * std::pow(rule.barycentric[q][0], power);
+    return sum;
+  };
+  for (int count : {1, 3, 6}) {
+    const auto rule = TriangleQuadrature::with_points(count);
+    CAPTURE(count);
+    CHECK(rule.weights.size() == static_cast<std::size_t>(count));
+    CHECK(mean(rule, 0) == Approx(1.0).epsilon(1e-14));
+    CHECK(mean(rule, 1) == Approx(1.0 / 3.0).epsilon(1e-14));
+  }
+  // Mean of b0^2 over a triangle is 1/6, of b0^4 is 1/15.
+  CHECK(mean(TriangleQuadrature::with_points(3), 2) == Approx(1.0 / 6.0).epsilon(1e-14));
+  CHECK(mean(TriangleQuadrature::with_points(6), 4) == Approx(1.0 / 15.0).epsilon(1e-12));
+  CHECK_THROWS_AS(TriangleQuadrature::with_points(4), std::invalid_argument);
+}
+
+TEST_CASE("fit energy: gradient and Hessian match finite differences", "[energies][fit][grad][hess]") {
+  const int samples = GENERATE(1, 3, 6);
+  CAPTURE(samples);
+  // A sphere patch partly outside a unit sphere: some points with phi > 0, some inside.
+  const TriangleMesh rest = test::icosphere(1, 1.05);
+  const test::SphereField field(Vector3d(0.1, 0.0, 0.0), 1.0);
+  const DofLayout layout{static_cast<int>(rest.vertices.rows())};
+  const FitEnergy energy(rest, {}, field, samples, layout);
+  CHECK(energy.fit_face_count() == rest.faces.rows());
+
+  std::srand(11);
+  const Eigen::VectorXd x = test::flatten(rest.vertices) +
+                            0.02 * Eigen::VectorXd::Random(rest.vertices.size());
+  test::check_position_energy(energy, x, 1e-5);
+}
+
+TEST_CASE("fit energy: zero inside the avatar; the exact value on a flat face", "[energies][fit]") {
+  TriangleMesh face;
+  face.vertices.resize(3, 3);
+  face.vertices << 0, 0, 0.5, 1, 0, 0.5, 0, 1, 0.5;
+  face.faces.resize(1, 3);
+  face.faces << 0, 1, 2;
+  // phi = z - 0.2 near the face: a huge sphere below it.
+  const double R = 1e6;
+  const test::SphereField field(Vector3d(0.25, 0.25, 0.2 - R), R);
+  const FitEnergy energy(face, {}, field, 3, DofLayout{3});
+  // Constant phi = 0.3 over an area 0.5 face: 0.5 · 0.09.
+  CHECK(energy.value(face.vertices) == Approx(0.045).epsilon(1e-6));
+  MatrixX3d inside = face.vertices;
+  inside.col(2).array() -= 0.6;
+  CHECK(energy.value(inside) == 0.0);
+}
+
+TEST_CASE("fit energy: faces with all three vertices listed as no-fit are left out", "[energies][fit]") {
+  const TriangleMesh rest = test::curved_grid(3);  // 8 faces
+  const test::SphereField field(Vector3d(0, 0, -5), 1.0);
+  const FitEnergy some(rest, {0, 1, 3, 4}, field, 1, DofLayout{9});
+  CHECK(some.fit_face_count() == 6);  // faces (0,1,4) and (0,4,3) are no-fit
+  const FitEnergy none(rest, {0, 1, 2, 3, 4, 5, 6, 7, 8}, field, 1, DofLayout{9});
+  CHECK(none.fit_face_count() == 0);
+  CHECK(none.value(rest.vertices) == 0.0);
+}

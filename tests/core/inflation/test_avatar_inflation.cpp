@@ -1,0 +1,108 @@
+#include <catch2/catch.hpp>
+
+#include "core/energies/analytic_fields.hpp"
+#include "core/fit/garment_fit.hpp"
+#include "core/inflation/avatar_inflation.hpp"
+#include "core/inflation/synthetic_scene.hpp"
+
+using namespace gr;
+
+namespace {
+
+/// Smallest signed distance of the points to the planes of a convex, outward-oriented
+/// polyhedron's faces, maximized over faces: positive iff the point is outside.
+double min_outside_distance(const TriangleMesh& convex, const Eigen::Ref<const MatrixX3d>& points) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index p = 0; p < points.rows(); ++p) {
+    double outside = -std::numeric_limits<double>::infinity();
+    for (Eigen::Index f = 0; f < convex.faces.rows(); ++f) {
+      const Vector3d a = convex.vertices.row(convex.faces(f, 0)).transpose();
+      const Vector3d b = convex.vertices.row(convex.faces(f, 1)).transpose();
+      const Vector3d c = convex.vertices.row(convex.faces(f, 2)).transpose();
+      const Vector3d n = (b - a).cross(c - a).normalized();
+      outside = std::max(outside, n.dot(points.row(p).transpose() - a));
+    }
+    smallest = std::min(smallest, outside);
+  }
+  return smallest;
+}
+
+/// Smallest distance between the garment and the avatar (and the garment and itself) over
+/// pairs closer than `radius`, with the core's own distance code.
+double contact_distance(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& garment, double radius) {
+  const ContactMesh mesh = ContactMesh::build(scene.garment, scene.avatar, true);
+  MatrixX3d V(mesh.vertex_count(), 3);
+  V.topRows(garment.rows()) = garment;
+  V.bottomRows(scene.avatar.vertices.rows()) = scene.avatar.vertices;
+  const BarrierPotential barrier(0.002, V);
+  return barrier.minimum_distance(find_candidates(mesh, V, radius), V);
+}
+
+}  // namespace
+
+TEST_CASE("avatar inflation: a sphere garment around an inflating sphere avatar",
+          "[inflation][integration]") {
+  const GarmentScene scene = test::inflating_sphere_scene();
+  REQUIRE(min_outside_distance(scene.avatar, scene.garment.vertices) < 0.0);  // A cuts the garment
+  RetargetParameters parameters;
+  int rounds = 0;
+  const InflationResult result =
+      inflate_avatar(scene, parameters, [&](const InflationRound& round) { rounds = round.round; });
+  INFO(result.message);
+  REQUIRE(result.status == InflationStatus::kSnapped);
+  CHECK(result.t == 1.0);
+  CHECK(result.rounds == rounds);
+  CHECK(result.newton_iterations > 0);
+  CHECK(std::abs(result.t_before_snap - 1.0) < 1e-3);
+  // Pushed outside the (convex) avatar, at a positive distance from it.
+  CHECK(min_outside_distance(scene.avatar, result.garment) > 0.0);
+  CHECK(contact_distance(scene, result.garment, 0.05) > 0.0);
+  WARN("inflation: " << result.rounds << " rounds, " << result.newton_iterations << " Newton steps, "
+                     << result.elapsed_seconds << " s");
+
+  SECTION("the fit pulls the garment towards the avatar and keeps it outside") {
+    const test::SphereField field(Vector3d::Zero(), 1.0);
+    GarmentScene fit_scene = scene;
+    fit_scene.distance_field = &field;
+    const FitResult fit = fit_garment(fit_scene, result.garment, parameters);
+    INFO(fit.solve.message);
+    CHECK(fit.solve.status != SolverStatus::kNonFiniteEnergy);
+    CHECK(fit.solve.iterations > 0);
+    const auto mean_radius = [](const MatrixX3d& V) { return V.rowwise().norm().mean(); };
+    CHECK(mean_radius(fit.garment) < mean_radius(result.garment));
+    CHECK(min_outside_distance(scene.avatar, fit.garment) > 0.0);
+    CHECK(contact_distance(scene, fit.garment, 0.05) > 0.0);
+    WARN("fit: " << to_string(fit.solve.status) << ", " << fit.solve.iterations << " Newton steps, "
+                 << fit.solve.elapsed_seconds << " s");
+  }
+}
+
+TEST_CASE("avatar inflation: a round that leaves t < 0 (eta < 0) resets and recovers",
+          "[inflation][integration]") {
+  // The garment starts within dhat of A0 all around (same connectivity, radius 0.9 against
+  // 0.899), it is stiff (large w_surf) and the penalty on t starts weak: the first solve
+  // relieves the barrier by shrinking the avatar further (t < 0, so |1 - t| > 1 and
+  // eta < 0) rather than by stretching the garment.
+  GarmentScene scene;
+  scene.avatar = test::icosphere(1, 1.0);
+  scene.shrunk_avatar = 0.899 * scene.avatar.vertices;
+  scene.garment = test::icosphere(1, 0.9);
+  RetargetParameters parameters;
+  parameters.w_surf = 1e6;
+  std::vector<InflationRound> rounds;
+  const InflationResult result =
+      inflate_avatar(scene, parameters, [&](const InflationRound& round) { rounds.push_back(round); });
+  INFO(result.message);
+  REQUIRE(!rounds.empty());
+  CHECK(rounds.front().t < 0.0);
+  CHECK(rounds.front().eta < 0.0);
+  CHECK(rounds.front().reset);
+  // Reset doubles lambda1, and eta < 0.99 doubles it again.
+  CHECK(rounds.front().lambda1 == Approx(4.0));
+  CHECK(result.resets >= 1);
+  REQUIRE(result.status == InflationStatus::kSnapped);
+  CHECK(result.t == 1.0);
+  CHECK(min_outside_distance(scene.avatar, result.garment) > 0.0);
+  WARN("reset case: " << result.rounds << " rounds, " << result.resets << " resets, "
+                      << result.newton_iterations << " Newton steps, " << result.elapsed_seconds << " s");
+}

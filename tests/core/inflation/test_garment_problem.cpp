@@ -1,0 +1,100 @@
+#include <catch2/catch.hpp>
+
+#include "core/energies/energy_checks.hpp"
+#include "core/energies/analytic_fields.hpp"
+#include "core/inflation/garment_problem.hpp"
+#include "core/test_shapes.hpp"
+
+using namespace gr;
+
+namespace {
+
+/// Avatar icosphere (radius 1, shrunk 0.9) and a garment with the same connectivity just
+/// outside A(0.5) (radius 0.95): every garment face is within dhat of the avatar at t = 0.5.
+GarmentScene close_contact_scene() {
+  GarmentScene scene;
+  scene.avatar = test::icosphere(1, 1.0);
+  scene.shrunk_avatar = 0.9 * scene.avatar.vertices;
+  scene.garment = test::icosphere(1, 0.9512);
+  return scene;
+}
+
+/// Checks the problem's gradient and exact Hessian at x against central differences.
+void check_problem_derivatives(GarmentProblem& problem, const Eigen::VectorXd& x, double h) {
+  problem.solution_changed(x);
+  REQUIRE(problem.contact().candidates().size() > 0);
+  const auto f = [&](const Eigen::VectorXd& y) { return problem.value(y); };
+  const auto grad = [&](const Eigen::VectorXd& y) {
+    Eigen::VectorXd g;
+    problem.gradient(y, g);
+    return g;
+  };
+  Eigen::VectorXd g;
+  problem.gradient(x, g);
+  CHECK(test::fd_matches(g, test::fd_gradient(f, x, h), 1e-5));
+  Eigen::SparseMatrix<double> H;
+  problem.hessian_of(x, H, false);
+  CHECK(test::fd_matches(Eigen::MatrixXd(H), test::fd_hessian(grad, x, h), 1e-5));
+}
+
+}  // namespace
+
+TEST_CASE("garment problem: inflation derivatives over [t, Vg] with contact, AL and L_pos",
+          "[inflation][grad][hess]") {
+  GarmentScene scene = close_contact_scene();
+  // A vertical skeleton through the sphere; the garment is closed, so give it loops by
+  // opening it: drop the faces around one vertex.
+  SkeletonMotion skeletons;
+  skeletons.source_joints.resize(2, 3);
+  skeletons.source_joints << 0, 0, -1.2, 0, 0, 1.2;
+  skeletons.target_joints = 1.1 * skeletons.source_joints;
+  skeletons.target_joints(0, 0) += 0.05;
+  skeletons.bones.resize(1, 2);
+  skeletons.bones << 0, 1;
+  scene.skeletons = skeletons;
+  MatrixX3i open_faces(scene.garment.faces.rows(), 3);
+  int kept = 0;
+  const int top = [&] {
+    Eigen::Index i;
+    scene.garment.vertices.col(2).maxCoeff(&i);
+    return static_cast<int>(i);
+  }();
+  for (int f = 0; f < scene.garment.faces.rows(); ++f)
+    if ((scene.garment.faces.row(f).array() != top).all()) open_faces.row(kept++) = scene.garment.faces.row(f);
+  scene.garment.faces = open_faces.topRows(kept);
+
+  RetargetParameters parameters;
+  GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
+  REQUIRE(problem.loop_bones().size() == 1);
+  problem.constraint().lambda1 = 8.0;
+  problem.constraint().lambda2 = 3.0;
+  std::srand(3);
+  Eigen::VectorXd x = problem.layout().pack(0.5, scene.garment.vertices);
+  x.tail(x.size() - 1) += 2e-4 * Eigen::VectorXd::Random(x.size() - 1);
+  check_problem_derivatives(problem, x, 1e-8);
+}
+
+TEST_CASE("garment problem: fit derivatives over Vg with contact and L_fit", "[fit][grad][hess]") {
+  GarmentScene scene = close_contact_scene();
+  scene.shrunk_avatar = 0.95 * scene.avatar.vertices;
+  scene.garment.vertices *= 1.0012 / 0.9512;  // radius 1.0012: within dhat of A
+  const test::SphereField field(Vector3d::Zero(), 0.98);
+  scene.distance_field = &field;
+  RetargetParameters parameters;
+  GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kFit);
+  REQUIRE(problem.dof_count() == 3 * scene.garment.vertices.rows());
+  std::srand(4);
+  Eigen::VectorXd x = problem.layout().pack(1.0, scene.garment.vertices);
+  x += 2e-4 * Eigen::VectorXd::Random(x.size());
+  check_problem_derivatives(problem, x, 1e-8);
+}
+
+TEST_CASE("garment problem: step length counts the avatar's motion through t", "[inflation]") {
+  const GarmentScene scene = close_contact_scene();
+  GarmentProblem problem(scene, RetargetParameters{}, GarmentProblem::Stage::kInflation);
+  Eigen::VectorXd dx = Eigen::VectorXd::Zero(problem.dof_count());
+  dx[0] = 0.5;  // t: the avatar moves 0.5 · |A - A0| = 0.05
+  CHECK(problem.step_length(dx) == Approx(0.05));
+  dx[4] = 0.2;
+  CHECK(problem.step_length(dx) == Approx(0.2));
+}

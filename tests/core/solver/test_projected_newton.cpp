@@ -1,0 +1,223 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+
+#include "core/common/psd_projection.hpp"
+#include "core/solver/projected_newton.hpp"
+
+using namespace gr;
+
+namespace {
+
+/// 1/2 xᵀ A x - bᵀ x with A a sparse SPD tridiagonal matrix.
+class QuadraticProblem : public Problem {
+ public:
+  explicit QuadraticProblem(int n) : A_(n, n), b_(Eigen::VectorXd::LinSpaced(n, -1.0, 2.0)) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < n; ++i) {
+      t.emplace_back(i, i, 4.0 + i);
+      if (i + 1 < n) {
+        t.emplace_back(i, i + 1, -1.0);
+        t.emplace_back(i + 1, i, -1.0);
+      }
+    }
+    A_.setFromTriplets(t.begin(), t.end());
+  }
+  int dof_count() const override { return static_cast<int>(A_.rows()); }
+  double value(const Eigen::VectorXd& x) override { return 0.5 * x.dot(A_ * x) - b_.dot(x); }
+  void gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) override { g = A_ * x - b_; }
+  void hessian(const Eigen::VectorXd&, Eigen::SparseMatrix<double>& H) override { H = A_; }
+  Eigen::VectorXd solution() const { return Eigen::MatrixXd(A_).ldlt().solve(b_); }
+
+ private:
+  Eigen::SparseMatrix<double> A_;
+  Eigen::VectorXd b_;
+};
+
+/// Sum over pairs of Rosenbrock functions 100 (y - x²)² + (1 - x)², each pair's 2×2 Hessian
+/// projected to PSD as an element would be.
+class RosenbrockProblem : public Problem {
+ public:
+  explicit RosenbrockProblem(int pairs) : pairs_(pairs) {}
+  int dof_count() const override { return 2 * pairs_; }
+  double value(const Eigen::VectorXd& z) override {
+    double sum = 0.0;
+    for (int i = 0; i < pairs_; ++i) {
+      const double x = z[2 * i], y = z[2 * i + 1];
+      sum += 100.0 * (y - x * x) * (y - x * x) + (1.0 - x) * (1.0 - x);
+    }
+    return sum;
+  }
+  void gradient(const Eigen::VectorXd& z, Eigen::VectorXd& g) override {
+    g.resize(z.size());
+    for (int i = 0; i < pairs_; ++i) {
+      const double x = z[2 * i], y = z[2 * i + 1];
+      g[2 * i] = -400.0 * x * (y - x * x) - 2.0 * (1.0 - x);
+      g[2 * i + 1] = 200.0 * (y - x * x);
+    }
+  }
+  void hessian(const Eigen::VectorXd& z, Eigen::SparseMatrix<double>& H) override {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < pairs_; ++i) {
+      const double x = z[2 * i], y = z[2 * i + 1];
+      Eigen::Matrix2d h;
+      h << 1200.0 * x * x - 400.0 * y + 2.0, -400.0 * x, -400.0 * x, 200.0;
+      h = project_to_psd(h);
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) t.emplace_back(2 * i + a, 2 * i + b, h(a, b));
+    }
+    H.resize(z.size(), z.size());
+    H.setFromTriplets(t.begin(), t.end());
+  }
+
+ private:
+  int pairs_;
+};
+
+}  // namespace
+
+TEST_CASE("projected Newton: a convex quadratic converges in one step", "[solver][newton]") {
+  QuadraticProblem problem(50);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(50);
+  ProjectedNewton newton;
+  const NewtonResult result = newton.minimize(problem, x);
+  CHECK(result.status == SolverStatus::kConverged);
+  CHECK(result.iterations == 1);
+  CHECK((x - problem.solution()).norm() < 1e-12);
+  CHECK(result.energy == Approx(problem.value(problem.solution())).epsilon(1e-12));
+}
+
+TEST_CASE("projected Newton: Rosenbrock pairs with PSD projection", "[solver][newton]") {
+  RosenbrockProblem problem(20);
+  Eigen::VectorXd x(40);
+  for (int i = 0; i < 20; ++i) x.segment<2>(2 * i) << -1.2 + 0.05 * i, 1.0 - 0.1 * i;
+  ProjectedNewton newton;
+  int callbacks = 0;
+  double last_energy = std::numeric_limits<double>::infinity();
+  bool monotone = true;
+  const NewtonResult result = newton.minimize(problem, x, [&](const NewtonProgress& p) {
+    ++callbacks;
+    monotone = monotone && p.energy <= last_energy;
+    last_energy = p.energy;
+  });
+  CHECK(result.status == SolverStatus::kConverged);
+  CHECK(callbacks == result.iterations);
+  CHECK(monotone);
+  CHECK((x - Eigen::VectorXd::Ones(40)).lpNorm<Eigen::Infinity>() < 1e-5);
+  CHECK(result.iterations < 100);
+}
+
+TEST_CASE("projected Newton: reports the iteration cap", "[solver][newton]") {
+  RosenbrockProblem problem(1);
+  Eigen::VectorXd x(2);
+  x << -1.2, 1.0;
+  const Eigen::VectorXd start = x;
+  NewtonOptions options;
+  options.max_iterations = 2;
+  ProjectedNewton newton(options);
+  const NewtonResult result = newton.minimize(problem, x);
+  CHECK(result.status == SolverStatus::kIterationLimit);
+  CHECK(result.iterations == 2);
+  CHECK(result.energy < problem.value(start));
+  CHECK(result.energy == problem.value(x));
+  CHECK_FALSE(result.message.empty());
+}
+
+TEST_CASE("projected Newton: non-finite energy and no-descent statuses", "[solver][newton]") {
+  SECTION("non-finite start energy") {
+    struct NanProblem : QuadraticProblem {
+      NanProblem() : QuadraticProblem(3) {}
+      double value(const Eigen::VectorXd&) override { return std::nan(""); }
+    } problem;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+    CHECK(ProjectedNewton().minimize(problem, x).status == SolverStatus::kNonFiniteEnergy);
+  }
+  SECTION("non-finite gradient") {
+    struct InfGradient : QuadraticProblem {
+      InfGradient() : QuadraticProblem(3) {}
+      void gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) override {
+        QuadraticProblem::gradient(x, g);
+        g[1] = std::numeric_limits<double>::infinity();
+      }
+    } problem;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+    CHECK(ProjectedNewton().minimize(problem, x).status == SolverStatus::kNonFiniteEnergy);
+  }
+  SECTION("a gradient that points the wrong way") {
+    struct WrongGradient : QuadraticProblem {
+      WrongGradient() : QuadraticProblem(3) {}
+      void gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) override {
+        QuadraticProblem::gradient(x, g);
+        g = -g;
+      }
+      void hessian(const Eigen::VectorXd&, Eigen::SparseMatrix<double>& H) override {
+        H.resize(3, 3);
+        H.setIdentity();
+      }
+    } problem;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+    const NewtonResult result = ProjectedNewton().minimize(problem, x);
+    CHECK(result.status == SolverStatus::kNoDescent);
+    CHECK(x.norm() == 0.0);
+  }
+  SECTION("CCD allows no step") {
+    struct Blocked : QuadraticProblem {
+      Blocked() : QuadraticProblem(3) {}
+      double max_step(const Eigen::VectorXd&, const Eigen::VectorXd&) override { return 0.0; }
+    } problem;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+    CHECK(ProjectedNewton().minimize(problem, x).status == SolverStatus::kNoDescent);
+  }
+}
+
+TEST_CASE("projected Newton: steps stay within the problem's safe bound", "[solver][newton]") {
+  struct Bounded : QuadraticProblem {
+    Bounded() : QuadraticProblem(4) {}
+    double max_step(const Eigen::VectorXd&, const Eigen::VectorXd&) override { return 0.25; }
+  } problem;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(4);
+  const Eigen::VectorXd solution = problem.solution();
+  ProjectedNewton newton;
+  int steps = 0;
+  newton.minimize(problem, x, [&](const NewtonProgress& p) {
+    ++steps;
+    CHECK(p.step <= 0.25);
+  });
+  CHECK(steps > 1);
+  CHECK((x - solution).lpNorm<Eigen::Infinity>() < 1e-5);
+}
+
+TEST_CASE("linear solver: symbolic analysis reused while the pattern holds; shift on failure",
+          "[solver][linear]") {
+  QuadraticProblem problem(30);
+  Eigen::SparseMatrix<double> A;
+  problem.hessian(Eigen::VectorXd(), A);
+  A.makeCompressed();
+  LinearSolver solver;
+  REQUIRE(solver.factorize(A));
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(30);
+  CHECK((A * solver.solve(b) - b).norm() < 1e-12);
+  Eigen::SparseMatrix<double> scaled = 2.0 * A;
+  scaled.makeCompressed();
+  REQUIRE(solver.factorize(scaled));
+  CHECK(solver.analysis_count() == 1);
+  CHECK((scaled * solver.solve(b) - b).norm() < 1e-12);
+
+  Eigen::SparseMatrix<double> wider = A;
+  wider.coeffRef(0, 29) = 0.1;
+  wider.coeffRef(29, 0) = 0.1;
+  wider.makeCompressed();
+  REQUIRE(solver.factorize(wider));
+  CHECK(solver.analysis_count() == 2);
+
+  Eigen::SparseMatrix<double> indefinite = A;
+  indefinite.coeffRef(5, 5) = -1.0;
+  indefinite.makeCompressed();
+  CHECK_FALSE(solver.factorize(indefinite));
+  CHECK(solver.analysis_count() == 3);  // back to A's pattern
+  CHECK(solver.factorize(indefinite, 10.0));
+  CHECK(solver.analysis_count() == 3);
+}
