@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "garment-retarget " GR_VERSION);
   int exit_code = gr::kExitSuccess;
   gr::add_retarget_command(app, exit_code);
+  gr::add_shrink_command(app, exit_code);
 
   try {
     app.parse(argc, argv);
