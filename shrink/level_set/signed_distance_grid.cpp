@@ -123,7 +123,7 @@ void sign_leaves(FloatTree& tree, const TriangleTree& surface, double voxel_size
   for_each_leaf(leaves, forwarder, [&](FloatTree::LeafNodeType& leaf) {
     for (openvdb::Index i = 0; i < FloatTree::LeafNodeType::SIZE; ++i) {
       const openvdb::Vec3d p = world_of(leaf.offsetToGlobalCoord(i), voxel_size);
-      const bool inside = surface.winding_number(Vector3d(p.x(), p.y(), p.z())) > 0.5;
+      const bool inside = winding_number_inside(surface.winding_number(Vector3d(p.x(), p.y(), p.z())));
       if (leaf.isValueOn(i)) {
         const float magnitude = std::abs(leaf.getValue(i));
         leaf.setValueOnly(i, inside ? -magnitude : magnitude);
@@ -158,7 +158,7 @@ void fill_interior_tiles(FloatTree& tree, const TriangleTree& surface, double vo
   }
   std::vector<char> inside(tiles.size(), 0);
   tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t t) {
-    inside[t] = surface.winding_number(tiles[t].center) > 0.5;
+    inside[t] = winding_number_inside(surface.winding_number(tiles[t].center));
   });
   for (std::size_t t = 0; t < tiles.size(); ++t)
     if (inside[t]) tree.addTile(tiles[t].level, tiles[t].origin, kInteriorPending, true);

@@ -21,8 +21,8 @@ struct SignedDistanceOptions {
 
 /// An avatar's signed distance (positive outside) on a sparse OpenVDB grid: exact
 /// point-to-mesh distances in a narrow band outside and at every voxel inside (full depth),
-/// the sign from the generalized winding number (inside where it exceeds 1/2), so open and
-/// overlapping parts get a sign that does not leak. Voxel centres sit at integer multiples
+/// the sign from the generalized winding number (inside where its magnitude exceeds 1/2), so
+/// open, overlapping or inverted parts get a sign that does not leak. Voxel centres sit at integer multiples
 /// of the voxel size. Cheap to copy (copies share the immutable grid); safe to read from
 /// many threads.
 class SignedDistanceGrid {
@@ -55,8 +55,8 @@ class SignedDistanceGrid {
 };
 
 /// Builds the signed distance of `avatar` (#V×3 positions, #F×3 faces, in normalized scene
-/// units). Faces need a consistent outward orientation per part; parts may be open,
-/// overlap or intersect. Zero-area faces are ignored for the sign.
+/// units). Faces need a consistent orientation per part (outward or all inward); parts may
+/// be open, overlap or intersect. Zero-area faces are ignored for the sign.
 /// Runs in parallel (TBB). Reports stages "unsigned distance", "sign", "interior".
 /// @throw std::invalid_argument when voxel_size is not positive and finite, or the avatar
 ///        has no face or an index out of range.

@@ -107,6 +107,20 @@ TriangleTree::TriangleTree(const TriangleMesh& mesh, double far_field_ratio)
       area_sum += area;
     }
     node.center = area_sum > 0.0 ? Vector3d(weighted / area_sum) : node.box.center();
+    node.moment.setZero();
+    for (auto& m : node.second) m.setZero();
+    for (int k = node.begin; k < node.end; ++k) {
+      const Vector3d* t = &corners_[3 * static_cast<std::size_t>(k)];
+      const Vector3d half_cross = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]);
+      const Vector3d centroid = (t[0] + t[1] + t[2]) / 3.0;
+      const Vector3d d = centroid - node.center;
+      // A triangle's second moment about its centroid is (1/12) Σ (corner − centroid)².
+      Eigen::Matrix3d spread = d * d.transpose();
+      for (int c = 0; c < 3; ++c)
+        spread += (t[c] - centroid) * (t[c] - centroid).transpose() / 12.0;
+      node.moment += half_cross * d.transpose();
+      for (int a = 0; a < 3; ++a) node.second[a] += half_cross[a] * spread;
+    }
     node.radius = 0.0;
     for (int k = 3 * node.begin; k < 3 * node.end; ++k)
       node.radius = std::max(node.radius, (corners_[static_cast<std::size_t>(k)] - node.center).norm());
@@ -196,7 +210,22 @@ double TriangleTree::winding_number(const Vector3d& p) const {
     const Vector3d r = node.center - p;
     const double distance_sq = r.squaredNorm();
     if (distance_sq > ratio_sq * node.radius * node.radius) {
-      solid_angle += node.dipole.dot(r) / (distance_sq * std::sqrt(distance_sq));
+      // Each area element adds N·K(y − p) with K(x) = x/|x|³, Taylor-expanded at the
+      // centre to second order in d = y − c:
+      //   K_a(r + d) ≈ K_a + ∂_b K_a d_b + ½ ∂_bc K_a d_b d_c, r = c − p, with
+      //   ∂_b K_a = δ_ab/|r|³ − 3 r_a r_b/|r|⁵ and
+      //   ∂_bc K_a = −3(δ_ab r_c + δ_ac r_b + δ_bc r_a)/|r|⁵ + 15 r_a r_b r_c/|r|⁷.
+      const double inv_r = 1.0 / std::sqrt(distance_sq);
+      const double inv_r3 = inv_r / distance_sq, inv_r5 = inv_r3 / distance_sq;
+      double second_order = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const Vector3d tr = node.second[a] * r;
+        second_order += -3.0 * inv_r5 * (2.0 * tr[a] + r[a] * node.second[a].trace()) +
+                        15.0 * inv_r5 / distance_sq * r[a] * r.dot(tr);
+      }
+      solid_angle += node.dipole.dot(r) * inv_r3 +
+                     node.moment.trace() * inv_r3 - 3.0 * r.dot(node.moment * r) * inv_r5 +
+                     0.5 * second_order;
       continue;
     }
     if (node.left < 0) {

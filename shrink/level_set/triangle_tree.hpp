@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -19,6 +20,10 @@ double triangle_solid_angle(const Vector3d& a, const Vector3d& b, const Vector3d
 double point_triangle_distance_sq(const Vector3d& p, const Vector3d& a, const Vector3d& b,
                                   const Vector3d& c);
 
+/// Inside/outside from a winding number: inside where its magnitude exceeds 1/2, so a part
+/// whose faces all point inward (a consistently inverted mesh) is still solid.
+inline bool winding_number_inside(double winding_number) { return std::abs(winding_number) > 0.5; }
+
 /// A bounding volume hierarchy over a triangle soup answering the two questions a signed
 /// distance to an open, overlapping avatar needs: how far is the surface, and is a point
 /// inside (generalized winding number, which is robust to holes, overlaps and
@@ -27,9 +32,9 @@ class TriangleTree {
  public:
   /// @param mesh triangles (#F×3) into vertices (#V×3); copied. Zero-area faces count for
   ///        distances and add nothing to winding numbers.
-  /// @param far_field_ratio a node is replaced by its dipole when the query point is
+  /// @param far_field_ratio a node is replaced by its expansion when the query point is
   ///        farther than this multiple of the node's radius; larger is slower and more
-  ///        accurate (2 keeps the winding number within about 1e-2 on avatars).
+  ///        accurate (2 keeps the winding number within about 1e-2 on the shared avatars).
   /// @throw std::invalid_argument when the mesh has no face or an index is out of range.
   explicit TriangleTree(const TriangleMesh& mesh, double far_field_ratio = 2.0);
 
@@ -38,7 +43,7 @@ class TriangleTree {
   double distance_sq(const Vector3d& p, int* face = nullptr) const;
 
   /// Generalized winding number at `p`: the sum of the solid angles of all triangles over
-  /// 4π, near triangles exact and far clusters by their dipole (Barnes-Hut). About 1
+  /// 4π, near triangles exact and far clusters by a second-order expansion (Barnes-Hut). About 1
   /// inside a closed, outward-oriented surface, 0 outside, fractional near holes; on the
   /// surface itself the value is meaningless.
   double winding_number(const Vector3d& p) const;
@@ -53,6 +58,8 @@ class TriangleTree {
     Eigen::AlignedBox3d box;
     Vector3d center;   ///< area-weighted centroid of the node's triangles
     Vector3d dipole;   ///< sum of area-weighted normals (half cross products)
+    Eigen::Matrix3d moment;  ///< Σ N ⊗ ∫(y − center), per unit area: first moment
+    Eigen::Matrix3d second[3];  ///< second[a] = Σ N_a ∫(y − center)(y − center)ᵀ per unit area
     double radius = 0; ///< farthest triangle corner from `center`
     int begin = 0;     ///< first triangle (in tree order)
     int end = 0;       ///< one past the last

@@ -83,8 +83,9 @@ std::optional<ShrinkConflict> find_shrink_conflict(const TriangleMesh& shrunk_av
   tbb::parallel_for(0, vertex_count, [&](int v) {
     const Vector3d p = garment.vertices.row(v).transpose();
     double winding = avatar_tree.winding_number(p);
-    if (std::abs(winding - 0.5) < kUncertainWinding) winding = avatar_tree.exact_winding_number(p);
-    if (winding <= 0.5) return;
+    if (std::abs(std::abs(winding) - 0.5) < kUncertainWinding)
+      winding = avatar_tree.exact_winding_number(p);
+    if (!winding_number_inside(winding)) return;
     ++inside_count;
     int current = first_inside.load();
     while (v < current && !first_inside.compare_exchange_weak(current, v)) {
