@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   int exit_code = gr::kExitSuccess;
   gr::add_retarget_command(app, exit_code);
   gr::add_validate_command(app, exit_code);
+  gr::add_shrink_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,43 @@
+#pragma once
+
+#include "core/common/types.hpp"
+#include "core/io/rig_files.hpp"
+#include "shrink/common/progress.hpp"
+#include "shrink/shrunk_avatar/shrink_result.hpp"
+
+namespace gr {
+
+/// How the skeleton shrink places vertices.
+struct SkeletonShrinkOptions {
+  /// Fraction of the way back from the source bone toward the vertex's own offset from its
+  /// target bone: small, so the shrunk avatar stays near the bones, but not zero, so no
+  /// triangle collapses exactly onto a bone.
+  double pullback = 0.05;
+  /// When the shrunk avatar conflicts with the garment, the pullback is halved at most
+  /// this many times before giving up.
+  int max_halvings = 6;
+  /// Reports stage "shrink": one step per certification.
+  ProgressCallback progress;
+};
+
+/// The skeleton shrunk avatar: each avatar vertex goes to its bone of the *source* skeleton
+/// (the bone at its largest-weight joint nearest to it, or the nearest bone when there are no
+/// weights or its weights are all zero), at the relative position along the bone it has on
+/// the target skeleton, plus `pullback` times its offset from the target bone (turned by
+/// the rotation from the target bone's direction to the source bone's). Certified with
+/// find_shrink_conflict; on a conflict the pullback is halved and tried again.
+/// @param avatar #V×3 / #F×3, normalized scene units (the target skeleton's frame).
+/// @param garment in the same frame; the source skeleton sits inside it.
+/// @param source_skeleton, target_skeleton normalized, joints corresponding by index; the
+///        target's bone list is used for both.
+/// @param skin_weights #J×#V, or empty (0×0).
+/// @throw std::invalid_argument when the joint counts differ, there is no bone, or the
+///        weights have the wrong shape; a pullback outside (0, 1].
+/// @throw NoValidShrinkError when every pullback tried conflicts with the garment.
+/// @throw OperationCancelled when options.progress returns false.
+ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& garment,
+                                const Skeleton& source_skeleton, const Skeleton& target_skeleton,
+                                const Eigen::MatrixXd& skin_weights,
+                                const SkeletonShrinkOptions& options = {});
+
+}  // namespace gr

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "core/common/types.hpp"
+#include "shrink/level_set/triangle_tree.hpp"
+
+namespace gr::test {
+
+/// Oracle: the winding number summing every triangle's solid angle, from unit vectors
+/// (tan(Ω/2) = â·(b̂×ĉ) / (1 + â·b̂ + b̂·ĉ + ĉ·â)), written apart from the library's.
+inline double brute_force_winding_number(const TriangleMesh& mesh, const Vector3d& p) {
+  double sum = 0.0;
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Vector3d a = (mesh.vertices.row(mesh.faces(f, 0)).transpose() - p).normalized();
+    const Vector3d b = (mesh.vertices.row(mesh.faces(f, 1)).transpose() - p).normalized();
+    const Vector3d c = (mesh.vertices.row(mesh.faces(f, 2)).transpose() - p).normalized();
+    sum += 2.0 * std::atan2(a.dot(b.cross(c)), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
+  }
+  return sum / (4.0 * 3.14159265358979323846);
+}
+
+/// Oracle: point-to-mesh distance as the minimum over every triangle of the exact
+/// point-triangle distance (itself checked against dense sampling).
+inline double brute_force_distance(const TriangleMesh& mesh, const Vector3d& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    best = std::min(best, point_triangle_distance_sq(p, mesh.vertices.row(mesh.faces(f, 0)).transpose(),
+                                                    mesh.vertices.row(mesh.faces(f, 1)).transpose(),
+                                                    mesh.vertices.row(mesh.faces(f, 2)).transpose()));
+  return std::sqrt(best);
+}
+
+}  // namespace gr::test

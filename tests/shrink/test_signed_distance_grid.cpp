@@ -1,0 +1,183 @@
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <tbb/parallel_for.h>
+
+#include "shrink/level_set/grid_distance_field.hpp"
+#include "shrink/level_set/signed_distance_grid.hpp"
+#include "shrink_oracles.hpp"
+#include "shrink_test_scenes.hpp"
+
+using namespace gr;
+
+TEST_CASE("signed distance voxels of a sphere are exact mesh distances", "[shrink][sdf]") {
+  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.013, -0.021, 0.007));
+  const double h = 0.02;
+  const SignedDistanceGrid grid = build_signed_distance(sphere, h);
+  REQUIRE(grid.background() == Approx(0.1).margin(1e-6));
+  // Full depth inside: the centre is about a radius deep.
+  REQUIRE(grid.min_value() < -0.48);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> index(-32, 32);
+  int checked_inside = 0, checked_band = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Vector3i ijk(index(rng), index(rng), index(rng));
+    const Vector3d p = h * ijk.cast<double>();
+    const double value = grid.voxel_value(ijk);
+    const double distance = test::brute_force_distance(sphere, p);
+    const bool inside = test::brute_force_winding_number(sphere, p) > 0.5;
+    CAPTURE(p.transpose(), value, distance, inside);
+    if (inside) {
+      REQUIRE(value == Approx(-distance).margin(1e-5));
+      ++checked_inside;
+    } else if (distance < grid.background() - 2 * h) {
+      REQUIRE(value == Approx(distance).margin(1e-5));
+      ++checked_band;
+    } else if (distance > grid.background()) {
+      REQUIRE(value == Approx(grid.background()));
+    }
+  }
+  CHECK(checked_inside > 50);
+  CHECK(checked_band > 20);
+}
+
+TEST_CASE("an inverted mesh gets the same signed distance", "[shrink][sdf]") {
+  TriangleMesh sphere = test::uv_sphere(0.4, Vector3d::Zero(), 12, 24);
+  const SignedDistanceGrid outward = build_signed_distance(sphere, 0.05);
+  sphere.faces.col(1).swap(sphere.faces.col(2));
+  const SignedDistanceGrid inward = build_signed_distance(sphere, 0.05);
+  for (int i = -10; i <= 10; ++i) {
+    const Eigen::Vector3i ijk(i, i / 2, 1);
+    REQUIRE(inward.voxel_value(ijk) == outward.voxel_value(ijk));
+  }
+  REQUIRE(outward.voxel_value(Eigen::Vector3i::Zero()) < -0.35);
+}
+
+TEST_CASE("signed distance of the shared avatars: sign and distance", "[shrink][sdf]") {
+  const std::string avatar_dir = GENERATE(as<std::string>{}, "foxgirl", "goblin");
+  const std::string garment_dir = avatar_dir == "foxgirl" ? "skirt" : "puffer";
+  const test::NormalizedScene scene = test::load_normalized_scene(garment_dir, avatar_dir);
+  const double h = 0.01;
+  const SignedDistanceGrid grid = build_signed_distance(scene.avatar, h);
+  const GridDistanceField field(grid);
+
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_int_distribution<Eigen::Index> vertex(0, scene.avatar.vertices.rows() - 1);
+  const Vector3d lo = scene.avatar.vertices.colwise().minCoeff().transpose().array() - 0.05;
+  const Vector3d size = scene.avatar.vertices.colwise().maxCoeff().transpose().array() + 0.05 - lo.array();
+  int inside = 0, outside = 0;
+  double worst_error = 0.0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // Half uniform in the box, half near the surface (where the sign is hard).
+    const Vector3d p = trial % 2 == 0
+        ? Vector3d(lo + size.cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng))))
+        : Vector3d(scene.avatar.vertices.row(vertex(rng)).transpose() +
+                   0.06 * Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5));
+    const double winding = test::brute_force_winding_number(scene.avatar, p);
+    const double distance = test::brute_force_distance(scene.avatar, p);
+    const double phi = field.evaluate(p);
+    CAPTURE(avatar_dir, p.transpose(), winding, distance, phi);
+    // Within a voxel of the surface the spline may smooth across it; elsewhere the sign
+    // must agree with the oracle (clear cases only: far from a winding number of 1/2).
+    if (distance > 1.5 * h && std::abs(std::abs(winding) - 0.5) > 0.05) {
+      const bool oracle_inside = std::abs(winding) > 0.5;
+      REQUIRE((phi < 0.0) == oracle_inside);
+      (oracle_inside ? inside : outside)++;
+    }
+    if (std::abs(winding) > 0.6 || distance < grid.background() - 3 * h) {
+      REQUIRE(std::abs(std::abs(phi) - distance) < h);
+      worst_error = std::max(worst_error, std::abs(std::abs(phi) - distance));
+    }
+  }
+  CHECK(inside > 10);
+  CHECK(outside > 10);
+  INFO("largest distance error / voxel " << worst_error / h);
+  CHECK(worst_error < 0.75 * h);
+}
+
+namespace {
+
+/// Central finite differences of the field's value (for the gradient) and gradient (for
+/// the Hessian).
+void check_derivatives(const GridDistanceField& field, const Vector3d& p, double step) {
+  Vector3d gradient;
+  Eigen::Matrix3d hessian;
+  field.evaluate(p, &gradient, &hessian);
+  Vector3d fd_gradient;
+  Eigen::Matrix3d fd_hessian;
+  for (int a = 0; a < 3; ++a) {
+    const Vector3d e = step * Vector3d::Unit(a);
+    Vector3d g_plus, g_minus;
+    fd_gradient[a] = (field.evaluate(p + e, &g_plus) - field.evaluate(p - e, &g_minus)) / (2 * step);
+    fd_hessian.col(a) = (g_plus - g_minus) / (2 * step);
+  }
+  CAPTURE(p.transpose(), gradient.transpose(), fd_gradient.transpose(), hessian, fd_hessian);
+  REQUIRE((gradient - fd_gradient).norm() <= 1e-6 * (1.0 + gradient.norm()));
+  REQUIRE((hessian - fd_hessian).norm() <= 1e-4 * (1.0 + hessian.norm()));
+  REQUIRE((hessian - hessian.transpose()).norm() <= 1e-12 * (1.0 + hessian.norm()));
+}
+
+}  // namespace
+
+TEST_CASE("tricubic sampler: gradient and Hessian match finite differences", "[shrink][sdf][grad]") {
+  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.01, 0.02, -0.03), 16, 32);
+  const GridDistanceField field(build_signed_distance(sphere, 0.04, {0.12, {}}));
+  SECTION("inside, on the surface and in the band") {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> coordinate(-0.65, 0.65);
+    for (int trial = 0; trial < 60; ++trial)
+      check_derivatives(field, Vector3d(coordinate(rng), coordinate(rng), coordinate(rng)), 1e-5);
+  }
+  SECTION("on the plateau and beyond the grid's box") {
+    const double distance = GENERATE(0.8, 1.2, 3.0, 50.0);
+    const Vector3d p = distance * Vector3d(0.61, -0.47, 0.637);
+    check_derivatives(field, p, 1e-5 * distance);
+  }
+}
+
+TEST_CASE("tricubic sampler: extrapolation keeps growing, sign and threads", "[shrink][sdf]") {
+  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d::Zero(), 16, 32);
+  const SignedDistanceGrid grid = build_signed_distance(sphere, 0.04);
+  const GridDistanceField field(grid);
+  REQUIRE(field.evaluate(Vector3d::Zero()) < -0.45);
+  // Between the band (0.62) and the grid's box (three voxels beyond it): the background.
+  double previous = field.evaluate(Vector3d(0.7, 0.0, 0.0));
+  REQUIRE(previous == Approx(grid.background()));
+  for (double x = 1.5; x < 100.0; x *= 1.5) {
+    Vector3d gradient;
+    const double value = field.evaluate(Vector3d(x, 0.2 * x, 0.0), &gradient);
+    REQUIRE(std::isfinite(value));
+    REQUIRE(value > previous);
+    REQUIRE(gradient.norm() <= 1.0 + 1e-9);
+    previous = value;
+  }
+  Vector3d far_gradient;
+  field.evaluate(Vector3d(1e3, 0.0, 0.0), &far_gradient);
+  REQUIRE(far_gradient.x() == Approx(1.0).margin(1e-6));
+
+  // Evaluations from many threads give the serial answers bit for bit.
+  std::vector<Vector3d> points;
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> coordinate(-0.8, 0.8);
+  for (int i = 0; i < 2000; ++i) points.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
+  std::vector<double> serial(points.size()), parallel(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) serial[i] = field.evaluate(points[i]);
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+    Vector3d g;
+    Eigen::Matrix3d H;
+    parallel[i] = field.evaluate(points[i], &g, &H);
+  });
+  REQUIRE(serial == parallel);
+}
+
+TEST_CASE("signed distance rejects a bad voxel size", "[shrink][sdf]") {
+  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d::Zero(), 8, 16);
+  REQUIRE_THROWS_AS(build_signed_distance(sphere, 0.0), std::invalid_argument);
+  REQUIRE_THROWS_AS(build_signed_distance(sphere, std::nan("")), std::invalid_argument);
+  SignedDistanceOptions cancel;
+  cancel.progress = [](const std::string&, double) { return false; };
+  REQUIRE_THROWS_AS(build_signed_distance(sphere, 0.05, cancel), OperationCancelled);
+}

@@ -1,0 +1,70 @@
+#include <cmath>
+#include <random>
+
+#include <catch2/catch.hpp>
+
+#include "shrink/level_set/triangle_tree.hpp"
+#include "shrink_oracles.hpp"
+#include "shrink_test_scenes.hpp"
+
+using namespace gr;
+
+using test::brute_force_distance;
+using test::brute_force_winding_number;
+
+TEST_CASE("point-triangle distance against dense sampling", "[shrink][distance]") {
+  const Vector3d a(0, 0, 0), b(1, 0, 0);
+  const Vector3d c = GENERATE(Vector3d(0, 1, 0), Vector3d(2, 1e-12, 0), Vector3d(0.5, 0, 0),
+                              Vector3d(0, 0, 0));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vector3d p(coordinate(rng), coordinate(rng), coordinate(rng));
+    CAPTURE(c.transpose(), p.transpose());
+    double sampled = std::numeric_limits<double>::infinity();
+    const int n = 200;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j)
+        sampled = std::min(sampled, (a + (b - a) * i / n + (c - a) * j / n - p).norm());
+    const double exact = std::sqrt(point_triangle_distance_sq(p, a, b, c));
+    REQUIRE(exact <= sampled + 1e-12);
+    REQUIRE(exact >= sampled - 0.02);
+  }
+}
+
+TEST_CASE("winding number of a closed sphere", "[shrink][winding]") {
+  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.1, -0.2, 0.3));
+  const TriangleTree tree(sphere);
+  REQUIRE(tree.winding_number(Vector3d(0.1, -0.2, 0.3)) == Approx(1.0).margin(1e-2));
+  REQUIRE(tree.exact_winding_number(Vector3d(0.3, -0.1, 0.4)) == Approx(1.0).margin(1e-9));
+  REQUIRE(tree.winding_number(Vector3d(2.0, 0.0, 0.0)) == Approx(0.0).margin(1e-3));
+  REQUIRE(tree.exact_winding_number(Vector3d(0.1, -0.2, 0.85)) == Approx(0.0).margin(1e-9));
+  REQUIRE(tree.distance_sq(Vector3d(0.1, -0.2, 1.3)) == Approx(0.25).epsilon(1e-3));
+}
+
+TEST_CASE("fast winding number and distance on the shared avatars", "[shrink][winding]") {
+  const std::string avatar_dir = GENERATE(as<std::string>{}, "foxgirl", "goblin");
+  const std::string garment_dir = avatar_dir == "foxgirl" ? "skirt" : "puffer";
+  const test::NormalizedScene scene = test::load_normalized_scene(garment_dir, avatar_dir);
+  const TriangleTree tree(scene.avatar);
+  const Eigen::AlignedBox3d box = tree.bounds();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  int inside = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const Vector3d p = box.min() + box.sizes().cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng)));
+    const double oracle = brute_force_winding_number(scene.avatar, p);
+    const double fast = tree.winding_number(p);
+    CAPTURE(avatar_dir, p.transpose(), oracle, fast);
+    REQUIRE(tree.exact_winding_number(p) == Approx(oracle).margin(1e-9));
+    REQUIRE(std::abs(fast - oracle) < 0.02);
+    worst = std::max(worst, std::abs(fast - oracle));
+    inside += oracle > 0.5;
+    REQUIRE(std::sqrt(tree.distance_sq(p)) == Approx(brute_force_distance(scene.avatar, p)).margin(1e-12));
+  }
+  // The samples reach both sides: the sign test below is not vacuous.
+  CHECK(inside > 5);
+  INFO("largest fast winding number error " << worst);
+  CHECK(worst < 0.01);
+}

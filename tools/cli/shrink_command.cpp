@@ -1,0 +1,66 @@
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "tools/cli/commands.hpp"
+#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/shrink_avatar.hpp"
+
+namespace gr {
+
+namespace {
+
+/// Prints a stage's progress on stderr in steps of a tenth.
+ProgressCallback stderr_progress() {
+  auto last = std::make_shared<std::pair<std::string, int>>("", -1);
+  return [last](const std::string& stage, double fraction) {
+    const int tenth = static_cast<int>(fraction * 10.0);
+    if (stage != last->first || tenth != last->second) {
+      std::fprintf(stderr, "shrink: %s %3d%%\n", stage.c_str(), tenth * 10);
+      *last = {stage, tenth};
+    }
+    return true;
+  };
+}
+
+}  // namespace
+
+void add_shrink_command(CLI::App& root, int& exit_code) {
+  auto options = std::make_shared<ShrinkRunOptions>();
+  auto quiet = std::make_shared<bool>(false);
+  CLI::App* cmd = root.add_subcommand(
+      "shrink", "Shrink the avatar until it is certified free of the garment; write it over "
+                "the garment (DIR/shrunk_avatar.obj) with DIR/report.json.");
+  cmd->add_option("--garment", options->inputs.garment, "Garment OBJ")->required();
+  cmd->add_option("--avatar", options->inputs.avatar, "Avatar OBJ to shrink")->required();
+  cmd->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
+  auto* source = cmd->add_option("--source-skeleton", options->inputs.source_skeleton,
+                                 "Source skeleton OBJ (v joints, l bones)");
+  auto* target = cmd->add_option("--target-skeleton", options->inputs.target_skeleton,
+                                 "Target skeleton OBJ, same joints and bones as the source");
+  source->needs(target);
+  target->needs(source);
+  cmd->add_option("--skin-weights", options->inputs.skin_weights,
+                  "Avatar skin weights: one row per joint, one column per avatar vertex")
+      ->needs(source);
+  cmd->add_option("--mode", options->mode, "levelset: erode along the signed distance; "
+                                           "skeleton: collapse onto the source skeleton")
+      ->check(CLI::IsMember({"levelset", "skeleton"}))
+      ->capture_default_str();
+  cmd->add_option("--voxel-size", options->voxel_size,
+                  "Level-set voxel size in normalized units (the body is about 2 tall)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--quiet", *quiet, "No progress on stderr");
+  cmd->callback([options, quiet, &exit_code]() {
+    if (!*quiet) options->progress = stderr_progress();
+    const ShrinkRunResult result = run_shrink(*options);
+    std::printf("%s\n", result.message.c_str());
+    if (result.found) std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());
+    std::printf("report: %s\n", result.report_path.c_str());
+    exit_code = result.found ? kExitSuccess : kExitNoValidShrink;
+  });
+}
+
+}  // namespace gr

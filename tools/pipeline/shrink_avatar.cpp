@@ -1,0 +1,145 @@
+#include "tools/pipeline/shrink_avatar.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/common/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "shrink/level_set/signed_distance_grid.hpp"
+#include "shrink/shrunk_avatar/levelset_shrink.hpp"
+#include "shrink/shrunk_avatar/skeleton_shrink.hpp"
+#include "tools/pipeline/normalization.hpp"
+#include "tools/pipeline/output_folder.hpp"
+
+namespace gr {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Similarity's Vector3d overloads also accept a matrix, so the #N×3 calls name their Ref.
+using PointRows = Eigen::Ref<const MatrixX3d>;
+
+Skeleton normalized(const Skeleton& skeleton, const Similarity& to_scene) {
+  return {to_scene.apply(PointRows(skeleton.joints)), skeleton.bones};
+}
+
+nlohmann::json point_json(const Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+void check_options(const ShrinkRunOptions& options, const Scene& scene) {
+  if (options.mode != "levelset" && options.mode != "skeleton")
+    throw InputError("", 0, fmt::format("unknown shrink mode '{}' (levelset or skeleton)", options.mode));
+  if (!(options.voxel_size > 0.0) || !std::isfinite(options.voxel_size))
+    throw InputError("", 0, "voxel size must be a positive number (normalized units)");
+  if (options.mode == "skeleton" && !scene.source_skeleton)
+    throw InputError(options.inputs.avatar, 0,
+                     "skeleton shrink needs --source-skeleton and --target-skeleton");
+}
+
+}  // namespace
+
+ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = load_scene(options.inputs);
+  check_options(options, scene);
+  prepare_output_folder(options.out_dir);
+  const Normalization normalization = normalize_scene(scene);
+  const TriangleMesh avatar{normalization.avatar_to_scene.apply(PointRows(scene.avatar.mesh.vertices)),
+                            scene.avatar.mesh.faces};
+  const TriangleMesh garment{normalization.garment_to_scene.apply(PointRows(scene.garment.mesh.vertices)),
+                             scene.garment.mesh.faces};
+
+  ShrinkRunResult run;
+  const std::filesystem::path out(options.out_dir);
+  run.report_path = (out / "report.json").string();
+  nlohmann::json report;
+  auto write_report = [&]() {
+    report["seconds"] = seconds_since(start);
+    write_file_atomically(run.report_path,
+                          [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
+  };
+  report = {{"mode", options.mode},
+                           {"avatar", options.inputs.avatar},
+                           {"garment", options.inputs.garment},
+                           {"units", "depth and voxel_size in normalized scene units (body about 2 tall); "
+                                     "positions in the garment file's frame"},
+                           {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
+  try {
+    if (options.mode == "levelset") {
+      const auto grid_start = std::chrono::steady_clock::now();
+      SignedDistanceOptions grid_options;
+      grid_options.progress = options.progress;
+      const SignedDistanceGrid grid = build_signed_distance(avatar, options.voxel_size, grid_options);
+      run.grid_seconds = seconds_since(grid_start);
+      LevelsetShrinkOptions shrink_options;
+      shrink_options.progress = options.progress;
+      run.shrink = shrink_levelset(avatar, garment, grid, shrink_options);
+      report["voxel_size"] = options.voxel_size;
+      report["grid_seconds"] = run.grid_seconds;
+      report["grid_active_voxels"] = grid.active_voxel_count();
+      report["grid_bytes"] = grid.memory_bytes();
+    } else {
+      SkeletonShrinkOptions shrink_options;
+      shrink_options.progress = options.progress;
+      run.shrink = shrink_to_skeleton(
+          avatar, garment, normalized(*scene.source_skeleton, normalization.garment_to_scene),
+          normalized(*scene.target_skeleton, normalization.avatar_to_scene), scene.skin_weights,
+          shrink_options);
+      report["pullback"] = run.shrink.pullback;
+    }
+  } catch (const NoValidShrinkError& e) {
+    const ShrinkConflict& conflict = e.conflict();
+    const Vector3d where = normalization.garment_to_scene.invert(conflict.position);
+    run.message = fmt::format("{} [in the garment's frame: ({:.6g}, {:.6g}, {:.6g})]", e.what(),
+                              where.x(), where.y(), where.z());
+    report["found"] = false;
+    report["conflict"] = {
+        {"kind", conflict.kind == ShrinkConflict::Kind::kSurfacesCross ? "surfaces cross"
+                                                                       : "garment inside avatar"},
+        {"avatar_face", conflict.avatar_face},
+        {"garment_face", conflict.garment_face},
+        {"garment_vertex", conflict.garment_vertex},
+        {"count", conflict.count},
+        {"position", point_json(where)},
+        {"message", run.message}};
+    write_report();
+    return run;
+  }
+
+  // Back to the garment's frame: the shrunk avatar lies over the garment as given.
+  const Similarity& garment_frame = normalization.garment_to_scene;
+  const Similarity& avatar_frame = normalization.avatar_to_scene;
+  const MatrixX3d positions = export_positions(
+      scene.avatar_document, scene.avatar, garment_frame.invert(PointRows(run.shrink.vertices)),
+      [&](const Vector3d& x) { return garment_frame.invert(avatar_frame.apply(x)); });
+  run.avatar_path = (out / "shrunk_avatar.obj").string();
+  copy_material_files(scene.avatar_document, options.out_dir);
+  write_obj(run.avatar_path, scene.avatar_document, positions);
+
+  run.found = true;
+  report["found"] = true;
+  report["depth"] = run.shrink.depth;
+  report["depth_garment_units"] = run.shrink.depth / garment_frame.scale;
+  report["medial_vertices"] = run.shrink.medial_vertices;
+  report["avatar_vertices"] = avatar.vertices.rows();
+  report["certifications"] = run.shrink.certifications;
+  report["shrink_seconds"] = run.shrink.seconds;
+  write_report();
+  run.message = options.mode == "levelset"
+                    ? fmt::format("shrunk avatar certified free of the garment at depth {:.4g} "
+                                  "({} vertices in the medial region)",
+                                  run.shrink.depth, run.shrink.medial_vertices)
+                    : fmt::format("shrunk avatar certified free of the garment on the source "
+                                  "skeleton (pullback {:.3g})",
+                                  run.shrink.pullback);
+  return run;
+}
+
+}  // namespace gr

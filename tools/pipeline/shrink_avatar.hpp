@@ -1,0 +1,38 @@
+#pragma once
+
+#include <string>
+
+#include "shrink/common/progress.hpp"
+#include "shrink/shrunk_avatar/shrink_result.hpp"
+#include "tools/pipeline/scene.hpp"
+
+namespace gr {
+
+/// Everything `garment-retarget shrink` can be asked.
+struct ShrinkRunOptions {
+  ScenePaths inputs;             ///< garment and avatar; skeletons and weights for "skeleton"
+  std::string out_dir;
+  std::string mode = "levelset"; ///< "levelset" or "skeleton"
+  double voxel_size = 0.01;      ///< normalized scene units (the body is about 2 tall)
+  ProgressCallback progress;     ///< optional
+};
+
+struct ShrinkRunResult {
+  bool found = false;            ///< a certified shrunk avatar was written
+  std::string avatar_path;       ///< DIR/shrunk_avatar.obj when found
+  std::string report_path;       ///< DIR/report.json, written either way
+  std::string message;           ///< one line for the user
+  ShrinkResult shrink;
+  double grid_seconds = 0.0;     ///< levelset: building the signed distance
+};
+
+/// Reads and normalizes the scene, shrinks the avatar (levelset or skeleton mode) until it
+/// is certified free of the garment, and writes DIR/shrunk_avatar.obj (the avatar's faces,
+/// UVs and materials, positions in the garment's frame and units so it lies over the input
+/// garment) and DIR/report.json (mode, depth, times, medial vertices, or the conflict when
+/// no shrink was found, with its position in the garment's frame).
+/// @throw InputError for bad inputs (skeleton mode without skeletons, a non-positive voxel
+///        size, an unknown mode), OutputError when out_dir cannot be written.
+ShrinkRunResult run_shrink(const ShrinkRunOptions& options);
+
+}  // namespace gr
