@@ -1,7 +1,8 @@
 #include "core/broad_phase/bvh.hpp"
 
 #include <algorithm>
-#include <numeric>
+#include <cstdint>
+#include <limits>
 
 #include <tbb/parallel_invoke.h>
 
@@ -19,57 +20,104 @@ int subtree_nodes(int count) {
   return 1 + subtree_nodes(left) + subtree_nodes(count - left);
 }
 
-}  // namespace
-
-void Bvh::build(std::vector<Eigen::AlignedBox3d> boxes) {
-  const int n = static_cast<int>(boxes.size());
-  ids_.resize(static_cast<std::size_t>(n));
-  std::iota(ids_.begin(), ids_.end(), 0);
-  boxes_ = std::move(boxes);
-  nodes_.clear();
-  if (n == 0) return;
-  std::vector<Eigen::Vector3d> centres(static_cast<std::size_t>(n));
-  for (std::size_t i = 0; i < centres.size(); ++i)
-    centres[i] = boxes_[i].isEmpty() ? Eigen::Vector3d::Zero().eval() : boxes_[i].center().eval();
-  nodes_.resize(static_cast<std::size_t>(subtree_nodes(n)));
-  build_node(0, 0, n, centres);
-  // Leaf boxes follow ids_ so a leaf's boxes are contiguous.
-  std::vector<Eigen::AlignedBox3d> ordered(boxes_.size());
-  for (std::size_t i = 0; i < ordered.size(); ++i) ordered[i] = boxes_[static_cast<std::size_t>(ids_[i])];
-  boxes_ = std::move(ordered);
+/// The 10 low bits of v spread to every third bit.
+std::uint32_t spread_bits(std::uint32_t v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
 }
 
-void Bvh::build_node(int node, int begin, int end, const std::vector<Eigen::Vector3d>& centres) {
+/// Sorts 64-bit keys by their high 32 bits (stable: equal codes keep their order), least
+/// significant digit first, 11 bits per pass.
+void radix_sort_high_half(std::vector<std::uint64_t>& keys) {
+  std::vector<std::uint64_t> buffer(keys.size());
+  for (int shift = 32; shift < 64; shift += 11) {
+    std::size_t counts[2049] = {};
+    for (const std::uint64_t key : keys) ++counts[((key >> shift) & 0x7ffu) + 1];
+    for (std::size_t d = 0; d < 2048; ++d) counts[d + 1] += counts[d];
+    for (const std::uint64_t key : keys) buffer[counts[(key >> shift) & 0x7ffu]++] = key;
+    keys.swap(buffer);
+  }
+}
+
+}  // namespace
+
+Bvh::FloatBox Bvh::FloatBox::outward(const Eigen::AlignedBox3d& box) {
+  FloatBox out;
+  if (box.isEmpty()) {
+    out.min.setConstant(std::numeric_limits<float>::infinity());
+    out.max.setConstant(-std::numeric_limits<float>::infinity());
+    return out;
+  }
+  // Rounding to float moves a value by at most |x| 2^-24; widening by |x| 2^-22 first
+  // (plus a tiny absolute amount near zero) keeps the float box around the double one.
+  const Eigen::Array3d lo = box.min().array(), hi = box.max().array();
+  const Eigen::Array3d slack_lo = lo.abs() * 0x1p-22 + 1e-30, slack_hi = hi.abs() * 0x1p-22 + 1e-30;
+  out.min << (lo - slack_lo).cast<float>(), 0.0f;
+  out.max << (hi + slack_hi).cast<float>(), 0.0f;
+  return out;
+}
+
+void Bvh::build(std::vector<Eigen::AlignedBox3d> boxes) {
+  const auto n = boxes.size();
+  nodes_.clear();
+  ids_.clear();
+  boxes_.clear();
+  if (n == 0) return;
+  // Morton code of each box centre in the centres' bounding box, 10 bits per axis, as the
+  // high half of a key whose low half is the id: one integer sort orders the leaves.
+  std::vector<Eigen::Vector3d> centres(n);
+  Eigen::AlignedBox3d centre_box;
+  for (std::size_t i = 0; i < n; ++i) {
+    centres[i] = boxes[i].isEmpty() ? Eigen::Vector3d::Zero().eval() : boxes[i].center().eval();
+    centre_box.extend(centres[i]);
+  }
+  const Eigen::Array3d scale = 1023.0 / centre_box.sizes().array().max(1e-300);
+  std::vector<std::uint64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Array3d cell = ((centres[i] - centre_box.min()).array() * scale).min(1023.0);
+    const std::uint32_t code = spread_bits(static_cast<std::uint32_t>(cell.x())) << 2 |
+                               spread_bits(static_cast<std::uint32_t>(cell.y())) << 1 |
+                               spread_bits(static_cast<std::uint32_t>(cell.z()));
+    keys[i] = std::uint64_t{code} << 32 | i;
+  }
+  radix_sort_high_half(keys);
+  ids_.resize(n);
+  boxes_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    ids_[k] = static_cast<int>(keys[k] & 0xffffffffu);
+    boxes_[k] = FloatBox::outward(boxes[static_cast<std::size_t>(ids_[k])]);
+  }
+  nodes_.resize(static_cast<std::size_t>(subtree_nodes(static_cast<int>(n))));
+  build_node(0, 0, static_cast<int>(n));
+}
+
+void Bvh::build_node(int node, int begin, int end) {
   Node& out = nodes_[static_cast<std::size_t>(node)];
   const int count = end - begin;
   if (count <= kLeafSize) {
     out.first = begin;
     out.count = count;
-    out.box.setEmpty();
-    for (int i = begin; i < end; ++i) out.box.extend(boxes_[static_cast<std::size_t>(ids_[static_cast<std::size_t>(i)])]);
+    out.box = boxes_[static_cast<std::size_t>(begin)];
+    for (int i = begin + 1; i < end; ++i) out.box.extend(boxes_[static_cast<std::size_t>(i)]);
     return;
   }
-  Eigen::AlignedBox3d centre_box;
-  for (int i = begin; i < end; ++i) centre_box.extend(centres[static_cast<std::size_t>(ids_[static_cast<std::size_t>(i)])]);
-  int axis;
-  centre_box.sizes().maxCoeff(&axis);
   const int middle = begin + count / 2;
-  std::nth_element(ids_.begin() + begin, ids_.begin() + middle, ids_.begin() + end,
-                   [&](int a, int b) {
-                     return centres[static_cast<std::size_t>(a)][axis] < centres[static_cast<std::size_t>(b)][axis];
-                   });
   const int left = node + 1;
   const int right = left + subtree_nodes(middle - begin);
   if (count >= kParallelSubtree) {
-    tbb::parallel_invoke([&] { build_node(left, begin, middle, centres); },
-                         [&] { build_node(right, middle, end, centres); });
+    tbb::parallel_invoke([&] { build_node(left, begin, middle); }, [&] { build_node(right, middle, end); });
   } else {
-    build_node(left, begin, middle, centres);
-    build_node(right, middle, end, centres);
+    build_node(left, begin, middle);
+    build_node(right, middle, end);
   }
   out.first = right;
   out.count = 0;
-  out.box = nodes_[static_cast<std::size_t>(left)].box.merged(nodes_[static_cast<std::size_t>(right)].box);
+  out.box = nodes_[static_cast<std::size_t>(left)].box;
+  out.box.extend(nodes_[static_cast<std::size_t>(right)].box);
 }
 
 }  // namespace gr

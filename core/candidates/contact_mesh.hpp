@@ -21,7 +21,10 @@ struct ContactMesh {
   int vertex_count() const { return garment_vertex_count + avatar_vertex_count; }
 
   /// Stacks the two meshes. `avatar_faces_used` (row indices into avatar.faces) keeps only
-  /// avatar faces the garment can reach; empty means all.
+  /// avatar faces the garment can reach; empty means all. Avatar vertices no kept face uses
+  /// take part in no pair.
+  /// @throw InputError when a face refers to a missing vertex or a selected avatar face
+  ///        does not exist.
   static ContactMesh build(const TriangleMesh& garment, const TriangleMesh& avatar,
                            bool self_contact, const std::vector<int>& avatar_faces_used = {});
 };

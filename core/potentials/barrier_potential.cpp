@@ -52,6 +52,27 @@ double pair_distance_sq(const PairStencil& pair, const std::array<Vector3d, 4>& 
   return stencil_distance_sq<4>(stencil, x, gradient, hessian);
 }
 
+/// PSD projection of a translation-invariant stencil Hessian. Every pair energy depends
+/// only on the differences x_i - x_0 (i = 1..3), so H = S^T H9 S with H9 the lower-right
+/// 9×9 block; projecting H9 and mapping back gives a PSD matrix, equal to H when H is PSD
+/// already, for an eigen-decomposition of 9×9 instead of 12×12 (about 2.4 times cheaper).
+Matrix12d project_stencil_to_psd(const Matrix12d& H) {
+  const Matrix9d H9 = project_to_psd(Matrix9d(H.bottomRightCorner<9, 9>()));
+  Matrix12d out;
+  out.bottomRightCorner<9, 9>() = H9;
+  for (int j = 0; j < 3; ++j) {
+    // Row/column blocks of vertex 0 are minus the sums over the others.
+    Eigen::Matrix3d column_sum = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < 3; ++i) column_sum += H9.block<3, 3>(3 * i, 3 * j);
+    out.block<3, 3>(0, 3 + 3 * j) = -column_sum;
+    out.block<3, 3>(3 + 3 * j, 0) = -column_sum.transpose();
+  }
+  Eigen::Matrix3d total = Eigen::Matrix3d::Zero();
+  for (int j = 0; j < 3; ++j) total -= out.block<3, 3>(0, 3 + 3 * j);
+  out.topLeftCorner<3, 3>() = total;
+  return out;
+}
+
 }  // namespace
 
 BarrierPotential::BarrierPotential(double dhat, const Eigen::Ref<const MatrixX3d>& rest_vertices)
@@ -145,7 +166,7 @@ Eigen::SparseMatrix<double> BarrierPotential::hessian(const Candidates& candidat
     StencilMatrix s;
     for (std::size_t k = chunk * kGrain; k < end; ++k) {
       if (!pair_energy(candidates, k, V, nullptr, &s.matrix).active) continue;
-      if (project_psd) s.matrix = project_to_psd(s.matrix);
+      if (project_psd) s.matrix = project_stencil_to_psd(s.matrix);
       s.vertices = stencil_of(candidates, k).vertices;
       out.push_back(s);
     }

@@ -15,16 +15,20 @@ class BarrierPotential {
  public:
   /// @param dhat barrier support as a distance (not squared), normalized scene units.
   /// @param rest_vertices stacked rest positions (#V×3), for the edge–edge mollifier's
-  ///        threshold (1e-3 times the product of the rest squared edge lengths).
+  ///        threshold (1e-3 times the product of the rest squared edge lengths); an
+  ///        edge–edge pair with a zero-length rest edge contributes nothing.
+  /// @throw InputError when dhat is not positive and finite.
   BarrierPotential(double dhat, const Eigen::Ref<const MatrixX3d>& rest_vertices);
 
   double dhat() const { return dhat_; }
 
   /// Sum over candidates at V (#V×3). +inf when a pair is at zero distance.
   double value(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
-  /// Gradient, 3#V, vertex-major (x0 y0 z0 x1 ...).
+  /// Gradient, 3#V, vertex-major (x0 y0 z0 x1 ...). Pairs at zero distance (where the
+  /// value is +inf) contribute nothing. Sums are in candidate order on any thread count.
   Eigen::VectorXd gradient(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
-  /// Hessian, 3#V×3#V; each pair's 12×12 block projected to PSD when `project_psd`.
+  /// Hessian, 3#V×3#V, compressed column storage; each pair's 12×12 block projected to PSD
+  /// (core/common/psd_projection.hpp) when `project_psd`.
   Eigen::SparseMatrix<double> hessian(const Candidates& candidates,
                                       const Eigen::Ref<const MatrixX3d>& V,
                                       bool project_psd = true) const;

@@ -84,6 +84,9 @@ TEST_CASE("barrier potential derivatives match finite differences", "[potentials
   const Eigen::MatrixXd projected = potential.hessian(c, V, true);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(projected);
   CHECK(eigen.eigenvalues().minCoeff() >= -1e-12 * std::max(1.0, eigen.eigenvalues().maxCoeff()));
+  // Translations stay free: the projection keeps them in the null space.
+  const Eigen::VectorXd shift = Eigen::Vector3d(0.3, -0.2, 0.5).replicate(8, 1);
+  CHECK((projected * shift).norm() <= 1e-9 * std::max(1.0, projected.norm()));
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> raw(H);
   if (raw.eigenvalues().minCoeff() >= 0.0) CHECK((projected - H).norm() <= 1e-12 * H.norm());
 }
