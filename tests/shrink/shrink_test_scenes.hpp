@@ -29,13 +29,12 @@ inline NormalizedScene load_normalized_scene(const std::string& garment_dir,
   if (avatar_dir == "goblin") paths.skin_weights = shared_data("avatars/goblin/skin.txt");
   const Scene scene = load_scene(paths);
   const Normalization n = normalize_scene(scene);
-  using Rows = Eigen::Ref<const MatrixX3d>;
   NormalizedScene out;
-  out.garment = {n.garment_to_scene.apply(Rows(scene.garment.mesh.vertices)), scene.garment.mesh.faces};
-  out.avatar = {n.avatar_to_scene.apply(Rows(scene.avatar.mesh.vertices)), scene.avatar.mesh.faces};
-  out.source_skeleton = {n.garment_to_scene.apply(Rows(scene.source_skeleton->joints)),
+  out.garment = {n.garment_to_scene.apply_rows(scene.garment.mesh.vertices), scene.garment.mesh.faces};
+  out.avatar = {n.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices), scene.avatar.mesh.faces};
+  out.source_skeleton = {n.garment_to_scene.apply_rows(scene.source_skeleton->joints),
                          scene.source_skeleton->bones};
-  out.target_skeleton = {n.avatar_to_scene.apply(Rows(scene.target_skeleton->joints)),
+  out.target_skeleton = {n.avatar_to_scene.apply_rows(scene.target_skeleton->joints),
                          scene.target_skeleton->bones};
   out.skin_weights = scene.skin_weights;
   return out;

@@ -88,10 +88,9 @@ TEST_CASE("levelset shrink of the skirt's own body is certified", "[shrink][leve
   paths.avatar = test::shared_data("garments/skirt/source_body.obj");
   const Scene scene = load_scene(paths);
   const Normalization n = normalize_scene(scene);
-  using Rows = Eigen::Ref<const MatrixX3d>;
-  const TriangleMesh avatar{n.avatar_to_scene.apply(Rows(scene.avatar.mesh.vertices)),
+  const TriangleMesh avatar{n.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices),
                             scene.avatar.mesh.faces};
-  const TriangleMesh garment{n.garment_to_scene.apply(Rows(scene.garment.mesh.vertices)),
+  const TriangleMesh garment{n.garment_to_scene.apply_rows(scene.garment.mesh.vertices),
                              scene.garment.mesh.faces};
   const ShrinkResult result = shrink_levelset(avatar, garment, build_signed_distance(avatar, 0.01));
   require_certified(avatar, result, garment);

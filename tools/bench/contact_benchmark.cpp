@@ -38,8 +38,8 @@ ContactScene load_contact_scene(const std::string& data, const SceneFiles& files
   const gr::Scene scene = gr::load_scene(paths);
   const gr::Normalization n = gr::normalize_scene(scene);
   gr::TriangleMesh garment = scene.garment.mesh, avatar = scene.avatar.mesh;
-  garment.vertices = n.garment_to_scene.apply(Eigen::Ref<const gr::MatrixX3d>(garment.vertices));
-  avatar.vertices = n.avatar_to_scene.apply(Eigen::Ref<const gr::MatrixX3d>(avatar.vertices));
+  garment.vertices = n.garment_to_scene.apply_rows(garment.vertices);
+  avatar.vertices = n.avatar_to_scene.apply_rows(avatar.vertices);
 
   ContactScene out;
   out.mesh = gr::ContactMesh::build(garment, avatar, true);

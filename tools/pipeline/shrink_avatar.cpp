@@ -24,11 +24,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Similarity's Vector3d overloads also accept a matrix, so the #N×3 calls name their Ref.
-using PointRows = Eigen::Ref<const MatrixX3d>;
-
 Skeleton normalized(const Skeleton& skeleton, const Similarity& to_scene) {
-  return {to_scene.apply(PointRows(skeleton.joints)), skeleton.bones};
+  return {to_scene.apply_rows(skeleton.joints), skeleton.bones};
 }
 
 nlohmann::json point_json(const Vector3d& p) { return {p.x(), p.y(), p.z()}; }
@@ -51,9 +48,9 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   check_options(options, scene);
   prepare_output_folder(options.out_dir);
   const Normalization normalization = normalize_scene(scene);
-  const TriangleMesh avatar{normalization.avatar_to_scene.apply(PointRows(scene.avatar.mesh.vertices)),
+  const TriangleMesh avatar{normalization.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices),
                             scene.avatar.mesh.faces};
-  const TriangleMesh garment{normalization.garment_to_scene.apply(PointRows(scene.garment.mesh.vertices)),
+  const TriangleMesh garment{normalization.garment_to_scene.apply_rows(scene.garment.mesh.vertices),
                              scene.garment.mesh.faces};
 
   ShrinkRunResult run;
@@ -117,7 +114,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const Similarity& garment_frame = normalization.garment_to_scene;
   const Similarity& avatar_frame = normalization.avatar_to_scene;
   const MatrixX3d positions = export_positions(
-      scene.avatar_document, scene.avatar, garment_frame.invert(PointRows(run.shrink.vertices)),
+      scene.avatar_document, scene.avatar, garment_frame.invert_rows(run.shrink.vertices),
       [&](const Vector3d& x) { return garment_frame.invert(avatar_frame.apply(x)); });
   run.avatar_path = (out / "shrunk_avatar.obj").string();
   copy_material_files(scene.avatar_document, options.out_dir);
