@@ -16,7 +16,13 @@ struct RetargetParameters {
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;   ///< model garment–garment contact
 
-  NewtonOptions newton;       ///< eps_tol, step tolerance, iteration cap of each solve
+  /// eps_tol, step tolerance, iteration cap of each solve; a Newton step moves no vertex
+  /// (garment, or avatar through t) more than 0.1 units at once.
+  NewtonOptions newton = [] {
+    NewtonOptions options;
+    options.max_step_length = 0.1;
+    return options;
+  }();
   CcdOptions ccd;
 
   // Augmented Lagrangian (Algorithm 1).

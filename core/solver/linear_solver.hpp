@@ -8,8 +8,12 @@
 namespace gr {
 
 /// Sparse Cholesky (CHOLMOD supernodal LLT) that owns its factorization. The symbolic
-/// analysis is kept while the sparsity pattern of the matrices it is given stays the same,
-/// and redone when the pattern changes.
+/// analysis is kept while the sparsity pattern of the matrices it is given stays within the
+/// analysed pattern: a matrix whose pattern is a subset is padded with explicit zeros.
+/// When a matrix brings new entries the analysis is redone on the union of the two
+/// patterns (contact pairs come and go between Newton steps; the union lets the next
+/// steps reuse it), or on the new pattern alone once the union has grown past
+/// 1.25 times the matrix's own size.
 class LinearSolver {
  public:
   LinearSolver();
@@ -26,10 +30,12 @@ class LinearSolver {
   int analysis_count() const { return analysis_count_; }
 
  private:
-  bool same_pattern(const Eigen::SparseMatrix<double>& A) const;
+  /// Writes A's values into padded_ (the analysed pattern); false when A has an entry
+  /// outside it.
+  bool pad(const Eigen::SparseMatrix<double>& A);
 
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky_;
-  std::vector<int> outer_, inner_;
+  Eigen::SparseMatrix<double> padded_;  ///< the analysed pattern, holding the last values
   int analysis_count_ = 0;
 };
 

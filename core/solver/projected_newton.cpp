@@ -85,6 +85,8 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
       direction = -g;
       ++result.gradient_descent_steps;
     }
+    const double length = problem.step_length(direction);
+    if (length > options_.max_step_length) direction *= options_.max_step_length / length;
 
     double alpha = std::min(1.0, problem.max_step(x, direction));
     if (!(alpha > 0.0))

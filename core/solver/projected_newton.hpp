@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "core/solver/linear_solver.hpp"
@@ -29,6 +30,10 @@ struct NewtonOptions {
   /// minimizer within this distance. Garment energies mix stiffnesses over eight orders of
   /// magnitude (contact against shape), which makes a length the more meaningful test.
   double step_tolerance = 1e-6;
+  /// A Newton direction that would move something further than this (Problem::step_length)
+  /// is scaled down to it before CCD. Ill-conditioned problems (soft, nearly free modes)
+  /// otherwise propose huge motions whose swept volumes meet everything.
+  double max_step_length = std::numeric_limits<double>::infinity();
   /// Halvings of the step in the line search before giving up with kNoDescent.
   int max_line_search_halvings = 50;
   /// When the Cholesky factorization fails, retry with A + shift·I, shift starting at this

@@ -190,7 +190,7 @@ TEST_CASE("projected Newton: steps stay within the problem's safe bound", "[solv
   CHECK((x - solution).lpNorm<Eigen::Infinity>() < 1e-5);
 }
 
-TEST_CASE("linear solver: symbolic analysis reused while the pattern holds; shift on failure",
+TEST_CASE("linear solver: symbolic analysis reused within the analysed pattern; shift on failure",
           "[solver][linear]") {
   QuadraticProblem problem(30);
   Eigen::SparseMatrix<double> A;
@@ -206,10 +206,13 @@ TEST_CASE("linear solver: symbolic analysis reused while the pattern holds; shif
   CHECK(solver.analysis_count() == 1);
   CHECK((scaled * solver.solve(b) - b).norm() < 1e-12);
 
-  Eigen::SparseMatrix<double> wider = A;
-  wider.coeffRef(0, 29) = 0.1;
-  wider.coeffRef(29, 0) = 0.1;
-  wider.makeCompressed();
+  const auto coupled = [&A](int i, int j) {
+    Eigen::SparseMatrix<double> M = A;
+    M.coeffRef(i, j) = M.coeffRef(j, i) = 0.1;
+    M.makeCompressed();
+    return M;
+  };
+  const Eigen::SparseMatrix<double> wider = coupled(0, 29);
   REQUIRE(solver.factorize(wider));
   CHECK(solver.analysis_count() == 2);
 
@@ -217,7 +220,19 @@ TEST_CASE("linear solver: symbolic analysis reused while the pattern holds; shif
   indefinite.coeffRef(5, 5) = -1.0;
   indefinite.makeCompressed();
   CHECK_FALSE(solver.factorize(indefinite));
-  CHECK(solver.analysis_count() == 3);  // back to A's pattern
-  CHECK(solver.factorize(indefinite, 10.0));
-  CHECK(solver.analysis_count() == 3);
+  CHECK(solver.analysis_count() == 2);  // A's pattern is within the analysed one
+  REQUIRE(solver.factorize(indefinite, 10.0));
+  CHECK(solver.analysis_count() == 2);
+  Eigen::SparseMatrix<double> identity(30, 30);
+  identity.setIdentity();
+  const Eigen::SparseMatrix<double> shifted = indefinite + 10.0 * identity;
+  CHECK((shifted * solver.solve(b) - b).norm() < 1e-12);
+
+  SECTION("a matrix with new entries is analysed on the union of the patterns") {
+    REQUIRE(solver.factorize(coupled(3, 17)));
+    CHECK(solver.analysis_count() == 3);
+    REQUIRE(solver.factorize(wider));  // still within the union
+    CHECK(solver.analysis_count() == 3);
+    CHECK((wider * solver.solve(b) - b).norm() < 1e-12);
+  }
 }
