@@ -1,6 +1,7 @@
 #include "shrink/level_set/signed_distance_grid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -114,18 +115,74 @@ FloatGrid::Ptr unsigned_band(const TriangleMesh& avatar, double voxel_size, floa
   return grid;
 }
 
+/// The winding number at every voxel would dominate the build, yet it only changes across
+/// the surface (or near the caps of holes). A voxel at distance u from the surface shares
+/// its sign with any point closer than u (the segment between them does not cross the
+/// surface), so voxels far from the surface take the sign of the nearest point of a coarse
+/// lattice: spacing 4 voxels (at most 2√3 voxels away) when u > 3.5 voxels, spacing 2
+/// (at most √3 away) when u > 1.8 voxels; nearer voxels are evaluated themselves.
+constexpr double kCoarseLatticeDistance = 3.5;
+constexpr double kFineLatticeDistance = 1.8;
+
+/// Lazily evaluated insideness at the lattice points around one leaf.
+class LeafLattice {
+ public:
+  LeafLattice(const TriangleTree& surface, const Coord& origin, double voxel_size)
+      : surface_(surface), origin_(origin), voxel_size_(voxel_size) {
+    fine_.fill(kUnknown);
+    coarse_.fill(kUnknown);
+  }
+
+  /// Insideness of the lattice point (spacing 2 or 4) nearest to local voxel `offset`.
+  bool inside_near(const Coord& offset, int spacing) {
+    char* cache = spacing == 2 ? fine_.data() : coarse_.data();
+    const int per_axis = spacing == 2 ? 5 : 3;
+    int key = 0;
+    Coord lattice;
+    for (int a = 0; a < 3; ++a) {
+      const int step = (offset[a] + spacing / 2) / spacing;
+      key = key * per_axis + step;
+      lattice[a] = origin_[a] + step * spacing;
+    }
+    char& known = cache[key];
+    if (known == kUnknown) known = inside_at(lattice) ? 1 : 0;
+    return known == 1;
+  }
+
+  bool inside_at(const Coord& ijk) const {
+    const openvdb::Vec3d p = world_of(ijk, voxel_size_);
+    return winding_number_inside(surface_.winding_number(Vector3d(p.x(), p.y(), p.z())));
+  }
+
+ private:
+  static constexpr char kUnknown = -1;
+  const TriangleTree& surface_;
+  Coord origin_;
+  double voxel_size_;
+  std::array<char, 125> fine_;
+  std::array<char, 27> coarse_;
+};
+
 /// Signs every voxel of every leaf by the winding number; inside voxels beyond the band
 /// are activated and marked pending.
 void sign_leaves(FloatTree& tree, const TriangleTree& surface, double voxel_size, float background,
                  const ProgressCallback& progress) {
   LeafManager leaves(tree);
   ProgressForwarder forwarder(progress, "sign");
+  const double band_voxels = background / voxel_size;
   for_each_leaf(leaves, forwarder, [&](FloatTree::LeafNodeType& leaf) {
+    LeafLattice lattice(surface, leaf.origin(), voxel_size);
     for (openvdb::Index i = 0; i < FloatTree::LeafNodeType::SIZE; ++i) {
-      const openvdb::Vec3d p = world_of(leaf.offsetToGlobalCoord(i), voxel_size);
-      const bool inside = winding_number_inside(surface.winding_number(Vector3d(p.x(), p.y(), p.z())));
-      if (leaf.isValueOn(i)) {
-        const float magnitude = std::abs(leaf.getValue(i));
+      const bool active = leaf.isValueOn(i);
+      const float magnitude = std::abs(leaf.getValue(i));
+      // Inactive voxels lie beyond the band: at least band_voxels from the surface.
+      const double distance_voxels = active ? magnitude / voxel_size : band_voxels;
+      const Coord offset = FloatTree::LeafNodeType::offsetToLocalCoord(i);
+      const bool inside =
+          distance_voxels > kCoarseLatticeDistance ? lattice.inside_near(offset, 4)
+          : distance_voxels > kFineLatticeDistance ? lattice.inside_near(offset, 2)
+                                                   : lattice.inside_at(leaf.offsetToGlobalCoord(i));
+      if (active) {
         leaf.setValueOnly(i, inside ? -magnitude : magnitude);
       } else if (inside) {
         leaf.setValueOn(i, kInteriorPending);
