@@ -42,13 +42,12 @@ SharedScene load(const std::string& garment, const std::string& avatar) {
   if (avatar == "goblin") paths.skin_weights = data + "/avatars/goblin/skin.txt";
   const gr::Scene scene = gr::load_scene(paths);
   const gr::Normalization n = gr::normalize_scene(scene);
-  using Rows = Eigen::Ref<const gr::MatrixX3d>;
   SharedScene s;
   s.name = avatar + "_" + garment;
-  s.garment = {n.garment_to_scene.apply(Rows(scene.garment.mesh.vertices)), scene.garment.mesh.faces};
-  s.avatar = {n.avatar_to_scene.apply(Rows(scene.avatar.mesh.vertices)), scene.avatar.mesh.faces};
-  s.source = {n.garment_to_scene.apply(Rows(scene.source_skeleton->joints)), scene.source_skeleton->bones};
-  s.target = {n.avatar_to_scene.apply(Rows(scene.target_skeleton->joints)), scene.target_skeleton->bones};
+  s.garment = {n.garment_to_scene.apply_rows(scene.garment.mesh.vertices), scene.garment.mesh.faces};
+  s.avatar = {n.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices), scene.avatar.mesh.faces};
+  s.source = {n.garment_to_scene.apply_rows(scene.source_skeleton->joints), scene.source_skeleton->bones};
+  s.target = {n.avatar_to_scene.apply_rows(scene.target_skeleton->joints), scene.target_skeleton->bones};
   s.weights = scene.skin_weights;
   return s;
 }
