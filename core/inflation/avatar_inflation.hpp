@@ -24,6 +24,7 @@ struct InflationRound {
   bool reset;                ///< eta < 0: garment and t went back to the start
   bool snapped;              ///< the snap to t = 1 is collision free
   NewtonResult solve;
+  MatrixX3d garment;         ///< #Vg×3 after the solve (before any reset)
 };
 
 using InflationCallback = std::function<void(const InflationRound&)>;

@@ -59,6 +59,18 @@ double GarmentProblem::value(const Eigen::VectorXd& x) {
   return total;
 }
 
+std::map<std::string, double> GarmentProblem::term_values(const Eigen::VectorXd& x) {
+  const auto V = layout_.garment(x);
+  const double t = layout_.t(x);
+  std::map<std::string, double> terms;
+  terms["surface"] = parameters_.w_surf * surface_.value(V);
+  terms["contact"] = parameters_.w_contact * contact_.value(V, t);
+  if (position_) terms["position"] = parameters_.w_pos * position_->value(V, t);
+  if (fit_) terms["fit"] = parameters_.w_fit * fit_->value(V);
+  if (layout_.t_free) terms["augmented_lagrangian"] = constraint_.value(t);
+  return terms;
+}
+
 void GarmentProblem::gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);

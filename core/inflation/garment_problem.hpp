@@ -1,6 +1,8 @@
 #pragma once
 
+#include <map>
 #include <memory>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -60,6 +62,13 @@ class GarmentProblem : public Problem {
   /// Smallest garment–avatar/garment–garment distance among pairs within dhat at x
   /// (+inf when none is that close).
   double minimum_distance(const Eigen::VectorXd& x);
+
+  /// Each term's weighted value at x: "surface", "contact", and when modelled "position",
+  /// "fit", "augmented_lagrangian". They sum to value(x).
+  std::map<std::string, double> term_values(const Eigen::VectorXd& x);
+  /// Whether the problem models each term (for reports).
+  bool models_position() const { return position_.has_value(); }
+  bool models_fit() const { return fit_.has_value(); }
 
   int dof_count() const override { return layout_.dof_count(); }
   double value(const Eigen::VectorXd& x) override;

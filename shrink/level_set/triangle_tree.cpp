@@ -1,5 +1,7 @@
 #include "shrink/level_set/triangle_tree.hpp"
 
+#include "core/distance/point_triangle_distance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,13 +13,6 @@ namespace {
 
 constexpr int kLeafSize = 8;
 constexpr double kFourPi = 4.0 * 3.14159265358979323846;
-
-double point_segment_distance_sq(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
-  const Vector3d ab = b - a;
-  const double length_sq = ab.squaredNorm();
-  const double s = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
-  return (a + s * ab - p).squaredNorm();
-}
 
 double box_distance_sq(const Eigen::AlignedBox3d& box, const Vector3d& p) {
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).squaredNorm();
@@ -35,29 +30,6 @@ double triangle_solid_angle(const Vector3d& a, const Vector3d& b, const Vector3d
   const double denominator = lx * ly * lz + x.dot(y) * lz + y.dot(z) * lx + z.dot(x) * ly;
   if (numerator == 0.0 && denominator <= 0.0) return 0.0;
   return 2.0 * std::atan2(numerator, denominator);
-}
-
-double point_triangle_distance_sq(const Vector3d& p, const Vector3d& a, const Vector3d& b,
-                                  const Vector3d& c) {
-  const Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const Vector3d normal = ab.cross(ac);
-  const double area2_sq = normal.squaredNorm();
-  // A (nearly) degenerate triangle is its edges; the face interior adds nothing then.
-  if (!(area2_sq > 1e-30 * std::max(ab.squaredNorm(), ac.squaredNorm()) *
-                       std::max(ab.squaredNorm(), ac.squaredNorm())))
-    return std::min({point_segment_distance_sq(p, a, b), point_segment_distance_sq(p, b, c),
-                     point_segment_distance_sq(p, c, a)});
-  // The projection lies inside the triangle when all three sub-triangle orientations
-  // agree with the normal; otherwise the nearest point is on an edge.
-  const Vector3d bp = p - b, cp = p - c;
-  const bool inside = ab.cross(ap).dot(normal) >= 0.0 && (c - b).cross(bp).dot(normal) >= 0.0 &&
-                      (a - c).cross(cp).dot(normal) >= 0.0;
-  if (inside) {
-    const double height = ap.dot(normal);
-    return height * height / area2_sq;
-  }
-  return std::min({point_segment_distance_sq(p, a, b), point_segment_distance_sq(p, b, c),
-                   point_segment_distance_sq(p, c, a)});
 }
 
 TriangleTree::TriangleTree(const TriangleMesh& mesh, double far_field_ratio)

@@ -15,11 +15,6 @@ namespace gr {
 double triangle_solid_angle(const Vector3d& a, const Vector3d& b, const Vector3d& c,
                             const Vector3d& p);
 
-/// Squared distance from `p` to the closed triangle (a, b, c); exact for degenerate
-/// triangles too (a segment or a point).
-double point_triangle_distance_sq(const Vector3d& p, const Vector3d& a, const Vector3d& b,
-                                  const Vector3d& c);
-
 /// Inside/outside from a winding number: inside where its magnitude exceeds 1/2, so a part
 /// whose faces all point inward (a consistently inverted mesh) is still solid.
 inline bool winding_number_inside(double winding_number) { return std::abs(winding_number) > 0.5; }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/common/types.hpp"
+#include "core/distance/point_triangle_distance.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
 
 namespace gr::test {

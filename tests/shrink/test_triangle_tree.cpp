@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/distance/point_triangle_distance.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
 #include "shrink_oracles.hpp"
 #include "shrink_test_scenes.hpp"

@@ -1,6 +1,7 @@
 // Speed against accuracy: runs each scene at each quality preset and along sweeps of
 // eps_tol and voxel size, then writes results.csv, results.md and a plot of time against
 // fit error and against distortion (matplotlib, in a virtual environment made on first use).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -64,7 +65,8 @@ std::string csv_row(const Run& run) {
       "{},{},{},{},{},{},{:g},{:g},{:g},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{:.1f},"
       "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
       run.scene, run.config, run.quality, run.preset ? 1 : 0, r.inflate_status + "/" + r.fit_status,
-      r.certified ? 1 : 0, p.eps_tol, p.voxel_size, p.dhat, p.fit_samples, r.seconds.shrink,
+      r.certified ? 1 : 0, p.solver.newton.gradient_tolerance, p.voxel_size, p.solver.dhat,
+      p.solver.fit_samples_per_face, r.seconds.shrink,
       r.seconds.inflate, r.seconds.fit, r.seconds.certify, r.seconds.total,
       r.inflate_newton_iterations, r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb,
       r.fit_error.mean, r.fit_error.p95, r.distortion.mean_edge_change,

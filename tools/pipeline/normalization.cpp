@@ -92,4 +92,20 @@ Normalization normalize_scene(const Scene& scene) {
   return n;
 }
 
+NormalizedScene make_normalized_scene(const Scene& scene) {
+  NormalizedScene out;
+  out.normalization = normalize_scene(scene);
+  const Similarity& garment_frame = out.normalization.garment_to_scene;
+  const Similarity& avatar_frame = out.normalization.avatar_to_scene;
+  out.garment = {garment_frame.apply_rows(scene.garment.mesh.vertices), scene.garment.mesh.faces};
+  out.avatar = {avatar_frame.apply_rows(scene.avatar.mesh.vertices), scene.avatar.mesh.faces};
+  if (scene.source_skeleton && scene.target_skeleton) {
+    out.source_skeleton = Skeleton{garment_frame.apply_rows(scene.source_skeleton->joints),
+                                   scene.source_skeleton->bones};
+    out.target_skeleton = Skeleton{avatar_frame.apply_rows(scene.target_skeleton->joints),
+                                   scene.target_skeleton->bones};
+  }
+  return out;
+}
+
 }  // namespace gr

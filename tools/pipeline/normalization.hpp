@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "core/common/types.hpp"
 #include "tools/pipeline/scene.hpp"
 
@@ -34,5 +36,17 @@ constexpr double kNormalizedHeight = 2.0;
 /// scaled so the avatar's largest bounding-box side is 2 and centred on its box.
 /// @throw InputError when a skeleton or the avatar has zero extent.
 Normalization normalize_scene(const Scene& scene);
+
+/// A scene's meshes and skeletons in normalized scene units.
+struct NormalizedScene {
+  Normalization normalization;
+  TriangleMesh garment;                    ///< welded garment, #Vg×3 / #Fg×3
+  TriangleMesh avatar;                     ///< welded avatar, #Va×3 / #Fa×3
+  std::optional<Skeleton> source_skeleton;  ///< in the garment's normalized frame
+  std::optional<Skeleton> target_skeleton;  ///< in the avatar's normalized frame
+};
+
+/// normalize_scene, then every mesh and skeleton mapped into the normalized frame.
+NormalizedScene make_normalized_scene(const Scene& scene);
 
 }  // namespace gr

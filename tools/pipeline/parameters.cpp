@@ -4,38 +4,46 @@
 
 namespace gr {
 
-RetargetParameters parameters_for_quality(const std::string& quality) {
-  RetargetParameters p;  // "balanced": the paper's weights and dhat
-  if (quality == "balanced") return p;
+PipelineParameters parameters_for_quality(const std::string& quality) {
+  PipelineParameters p;
+  RetargetParameters& s = p.solver;
   if (quality == "fast") {
-    p.eps_tol = 1e-3;
-    p.max_newton_iterations = 80;
+    s.newton.gradient_tolerance = 1e-4;
+    s.newton.step_tolerance = 1e-4;
+    s.newton.max_iterations = 150;
+    s.fit_samples_per_face = 1;
     p.voxel_size = 0.02;
-    p.fit_samples = 1;
-    return p;
-  }
-  if (quality == "accurate") {
-    p.eps_tol = 1e-7;
-    p.max_newton_iterations = 500;
+  } else if (quality == "balanced") {
+    s.newton.gradient_tolerance = 1e-6;
+    s.newton.step_tolerance = 1e-5;
+    s.newton.max_iterations = 400;
+    s.fit_samples_per_face = 3;
+    p.voxel_size = 0.01;
+  } else if (quality == "accurate") {
+    s.newton.gradient_tolerance = 1e-8;
+    s.newton.step_tolerance = 1e-6;
+    s.newton.max_iterations = 1000;
+    s.fit_samples_per_face = 6;
     p.voxel_size = 0.005;
-    p.fit_samples = 6;
-    return p;
+  } else {
+    throw std::invalid_argument("unknown quality '" + quality + "' (fast, balanced, accurate)");
   }
-  throw std::invalid_argument("unknown quality '" + quality + "' (fast, balanced, accurate)");
+  return p;
 }
 
-void ParameterOverrides::apply_to(RetargetParameters& p) const {
-  if (dhat) p.dhat = *dhat;
-  if (w_contact) p.w_contact = *w_contact;
-  if (w_fit) p.w_fit = *w_fit;
-  if (w_pos) p.w_pos = *w_pos;
-  if (eps_tol) p.eps_tol = *eps_tol;
+void ParameterOverrides::apply_to(PipelineParameters& p) const {
+  RetargetParameters& s = p.solver;
+  if (dhat) s.dhat = *dhat;
+  if (w_contact) s.w_contact = *w_contact;
+  if (w_fit) s.w_fit = *w_fit;
+  if (w_pos) s.w_pos = *w_pos;
+  if (eps_tol) s.newton.gradient_tolerance = *eps_tol;
   if (voxel_size) p.voxel_size = *voxel_size;
-  if (ccd_min_separation_ratio) p.ccd_min_separation_ratio = *ccd_min_separation_ratio;
-  if (max_newton_iterations) p.max_newton_iterations = *max_newton_iterations;
-  if (max_al_rounds) p.max_al_rounds = *max_al_rounds;
-  if (fit_samples) p.fit_samples = *fit_samples;
-  if (self_contact) p.self_contact = *self_contact;
+  if (ccd_min_separation_ratio) s.ccd.min_separation_ratio = *ccd_min_separation_ratio;
+  if (max_newton_iterations) s.newton.max_iterations = *max_newton_iterations;
+  if (max_al_rounds) s.max_al_rounds = *max_al_rounds;
+  if (fit_samples) s.fit_samples_per_face = *fit_samples;
+  if (self_contact) s.self_contact = *self_contact;
 }
 
 }  // namespace gr

@@ -3,27 +3,23 @@
 #include <optional>
 #include <string>
 
+#include "core/inflation/retarget_parameters.hpp"
+
 namespace gr {
 
-/// Every numerical knob of a retarget run, in normalized scene units (body about 2 tall).
-/// A quality preset sets them together; each can be overridden on its own.
-struct RetargetParameters {
-  double dhat = 0.002;              ///< barrier support distance
-  double w_contact = 1e8;           ///< barrier stiffness
-  double w_fit = 2.0;               ///< fit term weight
-  double w_pos = 10.0;              ///< boundary-loop position weight (with skeletons)
-  double eps_tol = 1e-5;            ///< Newton stops at |gradient| ≤ eps_tol
-  int max_newton_iterations = 200;  ///< per Newton solve
-  int max_al_rounds = 40;           ///< augmented-Lagrangian rounds of the inflation
-  double voxel_size = 0.01;         ///< signed-distance grid spacing
-  int fit_samples = 3;              ///< quadrature points per fit face
-  double ccd_min_separation_ratio = 0.1;  ///< CCD keeps this fraction of each pair's gap
-  bool self_contact = true;         ///< model garment–garment contact
+/// Every numerical knob of a retarget run, in normalized scene units (body about 2 tall):
+/// the solver's and the signed-distance grid's. A quality preset sets them together; each
+/// can be overridden on its own.
+struct PipelineParameters {
+  RetargetParameters solver;
+  double voxel_size = 0.01;  ///< signed-distance grid spacing
 };
 
-/// The parameters of a preset: "fast", "balanced" or "accurate".
+/// The parameters of a preset: "fast", "balanced" (the paper's weights and dhat) or
+/// "accurate". Every preset keeps the certificate; they differ in tolerances, grid
+/// resolution and fit quadrature.
 /// @throw std::invalid_argument for any other name.
-RetargetParameters parameters_for_quality(const std::string& quality);
+PipelineParameters parameters_for_quality(const std::string& quality);
 
 /// Individual overrides given on the command line; unset ones keep the preset's value.
 struct ParameterOverrides {
@@ -32,7 +28,7 @@ struct ParameterOverrides {
   std::optional<int> max_newton_iterations, max_al_rounds, fit_samples;
   std::optional<bool> self_contact;
 
-  void apply_to(RetargetParameters& parameters) const;
+  void apply_to(PipelineParameters& parameters) const;
 };
 
 }  // namespace gr

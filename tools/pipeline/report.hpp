@@ -20,7 +20,7 @@ struct StageSeconds {
 /// What a retarget run did and measured; written as report.json.
 struct RetargetReport {
   std::string quality;
-  RetargetParameters parameters;
+  PipelineParameters parameters;
   StageSeconds seconds;
 
   std::string shrink_mode;

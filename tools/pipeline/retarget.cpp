@@ -1,22 +1,309 @@
 #include "tools/pipeline/retarget.hpp"
 
+#include <algorithm>
 #include <filesystem>
+#include <iomanip>
+#include <optional>
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "core/common/errors.hpp"
+#include "core/fit/garment_fit.hpp"
+#include "core/inflation/avatar_inflation.hpp"
+#include "core/io/atomic_file.hpp"
+#include "shrink/level_set/grid_distance_field.hpp"
+#include "shrink/level_set/signed_distance_grid.hpp"
+#include "shrink/shrunk_avatar/levelset_shrink.hpp"
+#include "shrink/shrunk_avatar/skeleton_shrink.hpp"
+#include "validate/certify/certificate.hpp"
+#include "validate/checks/self_intersections.hpp"
+#include "validate/report/file_digest.hpp"
+#include "tools/pipeline/contact_scope.hpp"
+#include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
+#include "tools/pipeline/progress.hpp"
 
 namespace gr {
 
+namespace fs = std::filesystem;
+
+namespace {
+
+/// How far outside the avatar the signed-distance grid holds distances (normalized units):
+/// the fit pulls garment points only from within it.
+constexpr double kFitBand = 0.1;
+
+/// Newton progress lines: the first steps, then every tenth.
+constexpr int kNewtonLogEvery = 10;
+
+/// Rejects a garment that crosses itself as given: no solver output could be certified.
+void require_garment_free_of_itself(const Scene& scene, const TriangleMesh& garment) {
+  const SelfIntersections self = find_self_intersecting_face_pairs(garment, 1);
+  if (self.pairs.count == 0) return;
+  const auto& pair = self.pairs.pairs.front();
+  const auto& face_to_obj = scene.garment.face_to_obj;
+  throw InputError(
+      scene.garment_document.source_path, 0,
+      fmt::format("garment intersects itself ({} face pairs, e.g. faces {} and {}); an "
+                  "intersecting garment cannot be certified",
+                  self.pairs.count, face_to_obj[static_cast<std::size_t>(pair.first)] + 1,
+                  face_to_obj[static_cast<std::size_t>(pair.second)] + 1));
+}
+
+std::vector<bool> fit_face_mask(const TriangleMesh& garment, const std::vector<int>& no_fit) {
+  std::vector<bool> listed(static_cast<std::size_t>(garment.vertices.rows()), false);
+  for (const int v : no_fit) listed[static_cast<std::size_t>(v)] = true;
+  std::vector<bool> fit(static_cast<std::size_t>(garment.faces.rows()), true);
+  for (Eigen::Index f = 0; f < garment.faces.rows(); ++f)
+    fit[static_cast<std::size_t>(f)] = !(listed[static_cast<std::size_t>(garment.faces(f, 0))] &&
+                                         listed[static_cast<std::size_t>(garment.faces(f, 1))] &&
+                                         listed[static_cast<std::size_t>(garment.faces(f, 2))]);
+  return fit;
+}
+
+void write_report(const std::string& path, const RetargetReport& report) {
+  const nlohmann::json json = to_json(report);
+  write_file_atomically(path, [&](std::ostream& out) { out << std::setw(2) << json << '\n'; });
+}
+
+/// Writes a garment (normalized #Vg×3) as an OBJ in the avatar's frame and units.
+void write_garment(const std::string& path, const Scene& scene, const Normalization& n,
+                   const Eigen::Ref<const MatrixX3d>& garment) {
+  const MatrixX3d positions = export_positions(
+      scene.garment_document, scene.garment, n.avatar_to_scene.invert_rows(garment),
+      [&](const Vector3d& p) { return n.avatar_to_scene.invert(n.garment_to_scene.apply(p)); });
+  write_obj(path, scene.garment_document, positions);
+}
+
+void write_avatar(const std::string& path, const Scene& scene, const Normalization& n,
+                  const Eigen::Ref<const MatrixX3d>& avatar) {
+  const MatrixX3d positions =
+      export_positions(scene.avatar_document, scene.avatar, n.avatar_to_scene.invert_rows(avatar),
+                       [](const Vector3d& p) { return p; });
+  write_obj(path, scene.avatar_document, positions);
+}
+
+const char* status_name(SolverStatus status) { return to_string(status); }
+
+}  // namespace
+
 RetargetResult run_retarget(const RetargetOptions& options) {
-  const Scene scene = load_scene(options.inputs);
-  prepare_output_folder(options.out_dir);
+  const Progress progress(options.quiet);
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(options.threads));
+
   RetargetResult result;
-  result.garment_path = (std::filesystem::path(options.out_dir) / "garment.obj").string();
-  copy_material_files(scene.garment_document, options.out_dir);
-  write_obj(result.garment_path, scene.garment_document, scene.garment_document.positions);
-  result.status = RetargetStatus::kNotCertified;
-  result.message = "inputs read and garment exported; solver stages not yet available";
-  return result;
+  RetargetReport& report = result.report;
+  report.quality = options.quality;
+  report.parameters = parameters_for_quality(options.quality);
+  options.overrides.apply_to(report.parameters);
+  const PipelineParameters& parameters = report.parameters;
+  const StageTimer total;
+
+  // Read.
+  StageTimer stage;
+  progress.log("read", "{} on {}", options.inputs.garment, options.inputs.avatar);
+  const Scene scene = load_scene(options.inputs);
+  for (const auto& warning : scene.warnings) {
+    progress.log("warning", "{}", warning);
+    report.warnings.push_back(warning);
+  }
+  const bool has_skeletons = scene.source_skeleton.has_value();
+  report.shrink_mode = options.shrink_mode.empty() ? (has_skeletons ? "skeleton" : "levelset")
+                                                   : options.shrink_mode;
+  if (report.shrink_mode == "skeleton" && !has_skeletons)
+    throw InputError(options.inputs.avatar, 0,
+                     "skeleton shrink needs --source-skeleton and --target-skeleton");
+  prepare_output_folder(options.out_dir);
+  const fs::path out(options.out_dir);
+  result.report_path = (out / "report.json").string();
+  report.seconds.read = stage.seconds();
+
+  // Normalize.
+  stage = StageTimer();
+  const NormalizedScene normalized = make_normalized_scene(scene);
+  const Normalization& frames = normalized.normalization;
+  report.scene_scale = frames.avatar_to_scene.scale;
+  require_garment_free_of_itself(scene, normalized.garment);
+  report.garment_vertices = static_cast<int>(normalized.garment.vertices.rows());
+  report.garment_faces = static_cast<int>(normalized.garment.faces.rows());
+  report.avatar_faces_total = static_cast<int>(normalized.avatar.faces.rows());
+  report.seconds.normalize = stage.seconds();
+  progress.log("scene", "garment {} vertices / {} faces, avatar {} faces, scale {:.6g}",
+               report.garment_vertices, report.garment_faces, report.avatar_faces_total,
+               report.scene_scale);
+
+  auto finish = [&](RetargetStatus status, std::string message) {
+    result.status = status;
+    result.message = std::move(message);
+    report.seconds.total = total.seconds();
+    report.peak_memory_mb = peak_memory_mb();
+    write_report(result.report_path, report);
+    return result;
+  };
+
+  // Shrink.
+  stage = StageTimer();
+  SignedDistanceOptions grid_options;
+  grid_options.exterior_band = kFitBand;
+  const SignedDistanceGrid grid =
+      build_signed_distance(normalized.avatar, parameters.voxel_size, grid_options);
+  const GridDistanceField distance_field(grid);
+  progress.log("shrink", "signed distance: {} voxels of {:.4g} in {:.2f} s",
+               grid.active_voxel_count(), parameters.voxel_size, stage.seconds());
+  ShrinkResult shrunk;
+  try {
+    if (report.shrink_mode == "levelset")
+      shrunk = shrink_levelset(normalized.avatar, normalized.garment, grid);
+    else
+      shrunk = shrink_to_skeleton(normalized.avatar, normalized.garment, *normalized.source_skeleton,
+                                  *normalized.target_skeleton, scene.skin_weights);
+  } catch (const NoValidShrinkError& e) {
+    const Vector3d where = frames.garment_to_scene.invert(e.conflict().position);
+    report.seconds.shrink = stage.seconds();
+    return finish(RetargetStatus::kNoValidShrink,
+                  fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the garment's "
+                              "frame)",
+                              e.what(), where.x(), where.y(), where.z()));
+  }
+  report.shrink_depth = shrunk.depth;
+  report.shrink_medial_vertices = shrunk.medial_vertices;
+  report.seconds.shrink = stage.seconds();
+  progress.log("shrink", "{} shrink certified free of the garment in {:.2f} s",
+               report.shrink_mode, report.seconds.shrink);
+
+  // The solver's view of the scene.
+  GarmentScene problem_scene;
+  problem_scene.garment = normalized.garment;
+  problem_scene.avatar = normalized.avatar;
+  problem_scene.shrunk_avatar = shrunk.vertices;
+  const double largest_avatar_motion =
+      (normalized.avatar.vertices - shrunk.vertices).rowwise().norm().maxCoeff();
+  problem_scene.avatar_faces_used = reachable_avatar_faces(
+      normalized.garment.vertices, shrunk.vertices, normalized.avatar.vertices,
+      normalized.avatar.faces, largest_avatar_motion + kFitBand + parameters.solver.dhat);
+  report.avatar_faces_modelled = static_cast<int>(problem_scene.avatar_faces_used.size());
+  if (has_skeletons)
+    problem_scene.skeletons = SkeletonMotion{normalized.source_skeleton->joints,
+                                             normalized.target_skeleton->joints,
+                                             normalized.target_skeleton->bones, options.skirt};
+  problem_scene.no_fit = scene.no_fit;
+  problem_scene.distance_field = &distance_field;
+  const std::vector<bool> fit_faces = fit_face_mask(normalized.garment, scene.no_fit);
+  report.fit_faces = static_cast<int>(std::count(fit_faces.begin(), fit_faces.end(), true));
+  report.self_contact = parameters.solver.self_contact;
+  report.terms = {"surface", "contact"};
+  if (has_skeletons) report.terms.push_back("position");
+  report.terms.push_back("fit");
+
+  const fs::path frames_dir = out / "frames";
+  if (options.frames) {
+    fs::create_directories(frames_dir);
+    write_garment((frames_dir / "round_00_garment.obj").string(), scene, frames, normalized.garment.vertices);
+    write_avatar((frames_dir / "round_00_avatar.obj").string(), scene, frames, shrunk.vertices);
+  }
+
+  // Inflate.
+  stage = StageTimer();
+  const char* solving = "inflate";
+  auto on_newton = [&](const NewtonProgress& step) {
+    if (step.iteration <= 3 || step.iteration % kNewtonLogEvery == 0)
+      progress.log(solving, "  Newton {:4d}  E {:.9g}  step {:.3g}  |g| {:.3g}", step.iteration,
+                   step.energy, step.step, step.gradient_norm);
+  };
+  auto on_round = [&](const InflationRound& round) {
+    progress.log("inflate", "round {:2d}: t {:.9f}  eta {:.3g}  lambda1 {:.3g}  {} Newton steps{}{}",
+                 round.round, round.t, round.eta, round.lambda1, round.solve.iterations,
+                 round.reset ? "  (overshoot: reset)" : "", round.snapped ? "  snap to t = 1 valid" : "");
+    if (!options.frames) return;
+    const auto name = fmt::format("round_{:02d}", round.round);
+    write_garment((frames_dir / (name + "_garment.obj")).string(), scene, frames, round.garment);
+    const MatrixX3d avatar_now = shrunk.vertices + round.t * (normalized.avatar.vertices - shrunk.vertices);
+    write_avatar((frames_dir / (name + "_avatar.obj")).string(), scene, frames, avatar_now);
+  };
+  const InflationResult inflation =
+      inflate_avatar(problem_scene, parameters.solver, on_round, on_newton);
+  report.al_rounds = inflation.rounds;
+  report.al_resets = inflation.resets;
+  report.inflate_newton_iterations = inflation.newton_iterations;
+  report.inflate_status = to_string(inflation.status);
+  report.seconds.inflate = stage.seconds();
+  progress.log("inflate", "{} ({:.2f} s)", inflation.message, report.seconds.inflate);
+  if (!inflation.succeeded())
+    return finish(RetargetStatus::kSolverFailure, "inflation failed: " + inflation.message);
+
+  // Fit.
+  stage = StageTimer();
+  solving = "fit";
+  const FitResult fit = fit_garment(problem_scene, inflation.garment, parameters.solver, on_newton);
+  report.fit_newton_iterations = fit.solve.iterations;
+  report.fit_status = status_name(fit.solve.status);
+  report.seconds.fit = stage.seconds();
+  progress.log("fit", "{} after {} Newton steps ({:.2f} s)", fit.solve.message, fit.solve.iterations,
+               report.seconds.fit);
+  if (fit.solve.status == SolverStatus::kNonFiniteEnergy)
+    return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
+  if (!fit.solve.converged())
+    report.warnings.push_back("fit stopped before its tolerance: " + fit.solve.message +
+                              " (the garment is still intersection free)");
+  {
+    GarmentProblem final_problem(problem_scene, parameters.solver, GarmentProblem::Stage::kFit);
+    const Eigen::VectorXd x = final_problem.layout().pack(1.0, fit.garment);
+    report.final_energies = final_problem.term_values(x);
+    report.min_distance = final_problem.minimum_distance(x);
+    const auto& faces = normalized.garment.faces;
+    double rest_area = 0.0;
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      const Vector3d a = normalized.garment.vertices.row(faces(f, 0)).transpose();
+      const Vector3d b = normalized.garment.vertices.row(faces(f, 1)).transpose();
+      const Vector3d c = normalized.garment.vertices.row(faces(f, 2)).transpose();
+      rest_area += 0.5 * (b - a).cross(c - a).norm();
+    }
+    report.surface_energy_per_area = report.final_energies["surface"] / rest_area;
+  }
+
+  // Write.
+  stage = StageTimer();
+  result.garment_path = (out / "garment.obj").string();
+  for (const auto& warning : copy_material_files(scene.garment_document, options.out_dir))
+    report.warnings.push_back(warning);
+  write_garment(result.garment_path, scene, frames, fit.garment);
+  report.seconds.write = stage.seconds();
+
+  // Certify the file as written.
+  stage = StageTimer();
+  nlohmann::json extra = {
+      {"inputs",
+       {{"garment", {{"path", options.inputs.garment}, {"sha256", sha256_of_file(options.inputs.garment)}}},
+        {"avatar", {{"path", options.inputs.avatar}, {"sha256", sha256_of_file(options.inputs.avatar)}}}}},
+      {"output", {{"path", result.garment_path}, {"sha256", sha256_of_file(result.garment_path)}}},
+      {"parameters", to_json(report)["parameters"]},
+      {"quality", options.quality}};
+  const Certificate certificate = certify_garment(result.garment_path, options.inputs.avatar, extra);
+  write_certificate((out / "certificate.json").string(), certificate);
+  report.certified = certificate.certified();
+  report.seconds.certify = stage.seconds();
+
+  // Measure.
+  const TriangleMesh written_garment{frames.avatar_to_scene.invert_rows(fit.garment),
+                                     normalized.garment.faces};
+  report.fit_error = measure_fit_error(written_garment, fit_faces, scene.avatar.mesh);
+  report.distortion =
+      measure_distortion(normalized.garment.vertices, fit.garment, normalized.garment.faces);
+
+  const auto totals = certificate.validation.result.totals();
+  const std::string summary = fmt::format(
+      "{}: {} garment-avatar and {} self intersections; min distance {:.3g} (avatar units); fit "
+      "error mean {:.3g}, p95 {:.3g}; {:.1f} s",
+      report.certified ? "certified" : "NOT certified", totals.garment_avatar_intersections,
+      totals.garment_self_intersections, report.min_distance / report.scene_scale,
+      report.fit_error.mean, report.fit_error.p95, total.seconds());
+  progress.log("certify", "{}", summary);
+  return finish(report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified,
+                summary);
 }
 
 }  // namespace gr

@@ -24,10 +24,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Skeleton normalized(const Skeleton& skeleton, const Similarity& to_scene) {
-  return {to_scene.apply_rows(skeleton.joints), skeleton.bones};
-}
-
 nlohmann::json point_json(const Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 void check_options(const ShrinkRunOptions& options, const Scene& scene) {
@@ -47,11 +43,10 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const Scene scene = load_scene(options.inputs);
   check_options(options, scene);
   prepare_output_folder(options.out_dir);
-  const Normalization normalization = normalize_scene(scene);
-  const TriangleMesh avatar{normalization.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices),
-                            scene.avatar.mesh.faces};
-  const TriangleMesh garment{normalization.garment_to_scene.apply_rows(scene.garment.mesh.vertices),
-                             scene.garment.mesh.faces};
+  const NormalizedScene normalized = make_normalized_scene(scene);
+  const Normalization& normalization = normalized.normalization;
+  const TriangleMesh& avatar = normalized.avatar;
+  const TriangleMesh& garment = normalized.garment;
 
   ShrinkRunResult run;
   const std::filesystem::path out(options.out_dir);
@@ -86,8 +81,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
       SkeletonShrinkOptions shrink_options;
       shrink_options.progress = options.progress;
       run.shrink = shrink_to_skeleton(
-          avatar, garment, normalized(*scene.source_skeleton, normalization.garment_to_scene),
-          normalized(*scene.target_skeleton, normalization.avatar_to_scene), scene.skin_weights,
+          avatar, garment, *normalized.source_skeleton, *normalized.target_skeleton, scene.skin_weights,
           shrink_options);
       report["pullback"] = run.shrink.pullback;
     }
