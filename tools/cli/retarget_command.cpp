@@ -25,19 +25,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   auto options = std::make_shared<RetargetOptions>();
   CLI::App* cmd = root.add_subcommand(
       "retarget", "Refit a garment onto an avatar, then certify the written garment.");
-  cmd->add_option("--garment", options->inputs.garment, "Garment OBJ (the source garment)")
-      ->required();
-  cmd->add_option("--avatar", options->inputs.avatar, "Target avatar OBJ")->required();
-  cmd->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
-  auto* source = cmd->add_option("--source-skeleton", options->inputs.source_skeleton,
-                                 "Source skeleton OBJ (v joints, l bones)");
-  auto* target = cmd->add_option("--target-skeleton", options->inputs.target_skeleton,
-                                 "Target skeleton OBJ, same joints and bones as the source");
-  source->needs(target);
-  target->needs(source);
-  cmd->add_option("--skin-weights", options->inputs.skin_weights,
-                  "Avatar skin weights: one row per joint, one column per avatar vertex")
-      ->needs(source);
+  add_scene_options(*cmd, options->inputs, options->out_dir);
   cmd->add_option("--no-fit", options->inputs.no_fit,
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting");
   cmd->add_flag("--skirt", options->skirt, "Garment is a skirt: add a virtual bone between the legs");

@@ -32,18 +32,7 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
   CLI::App* cmd = root.add_subcommand(
       "shrink", "Shrink the avatar until it is certified free of the garment; write it over "
                 "the garment (DIR/shrunk_avatar.obj) with DIR/report.json.");
-  cmd->add_option("--garment", options->inputs.garment, "Garment OBJ")->required();
-  cmd->add_option("--avatar", options->inputs.avatar, "Avatar OBJ to shrink")->required();
-  cmd->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
-  auto* source = cmd->add_option("--source-skeleton", options->inputs.source_skeleton,
-                                 "Source skeleton OBJ (v joints, l bones)");
-  auto* target = cmd->add_option("--target-skeleton", options->inputs.target_skeleton,
-                                 "Target skeleton OBJ, same joints and bones as the source");
-  source->needs(target);
-  target->needs(source);
-  cmd->add_option("--skin-weights", options->inputs.skin_weights,
-                  "Avatar skin weights: one row per joint, one column per avatar vertex")
-      ->needs(source);
+  add_scene_options(*cmd, options->inputs, options->out_dir);
   cmd->add_option("--mode", options->mode, "levelset: erode along the signed distance; "
                                            "skeleton: collapse onto the source skeleton")
       ->check(CLI::IsMember({"levelset", "skeleton"}))

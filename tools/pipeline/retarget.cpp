@@ -105,12 +105,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
 
   // Read.
   StageTimer stage;
-  progress.log("read", "{} on {}", options.inputs.garment, options.inputs.avatar);
   const Scene scene = load_scene(options.inputs);
-  for (const auto& warning : scene.warnings) {
-    progress.log("warning", "{}", warning);
-    report.warnings.push_back(warning);
-  }
   const bool has_skeletons = scene.source_skeleton.has_value();
   report.shrink_mode = options.shrink_mode.empty() ? (has_skeletons ? "skeleton" : "levelset")
                                                    : options.shrink_mode;
@@ -128,6 +123,12 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const Normalization& frames = normalized.normalization;
   report.scene_scale = frames.avatar_to_scene.scale;
   require_garment_free_of_itself(scene, normalized.garment);
+  // Progress starts once the inputs are known good, so bad input prints its error alone.
+  progress.log("read", "{} on {}", options.inputs.garment, options.inputs.avatar);
+  for (const auto& warning : scene.warnings) {
+    progress.log("warning", "{}", warning);
+    report.warnings.push_back(warning);
+  }
   report.garment_vertices = static_cast<int>(normalized.garment.vertices.rows());
   report.garment_faces = static_cast<int>(normalized.garment.faces.rows());
   report.avatar_faces_total = static_cast<int>(normalized.avatar.faces.rows());
