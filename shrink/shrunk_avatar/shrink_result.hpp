@@ -15,6 +15,8 @@ struct ShrinkResult {
   double depth = 0.0;        ///< levelset: the erosion depth d (normalized units); skeleton: 0
   double pullback = 0.0;     ///< skeleton: fraction of the way back toward the surface; levelset: 0
   int medial_vertices = 0;   ///< levelset: vertices stopped in the medial region before depth d
+  int collapsed_vertices = 0;  ///< skeleton: vertices pulled toward a joint to clear a crossing
+  int collapse_rounds = 0;   ///< skeleton: rounds of pulling crossing faces inward
   int certifications = 0;    ///< exact garment checks run
   double seconds = 0.0;      ///< wall time of the shrink
 };

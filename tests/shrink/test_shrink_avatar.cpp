@@ -156,6 +156,104 @@ TEST_CASE("skeleton shrink of foxgirl under the skirt is certified", "[shrink][s
             result.pullback * farthest * 3.0 + 1e-9);
 }
 
+namespace {
+
+/// True when some face has two corners at exactly the same position.
+bool has_coincident_corners(const TriangleMesh& mesh) {
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (mesh.vertices.row(mesh.faces(f, c)) == mesh.vertices.row(mesh.faces(f, (c + 1) % 3)))
+        return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("skeleton shrink of goblin under the puffer is certified", "[shrink][skeleton]") {
+  // Goblin's arms hang down where the puffer's are raised: faces whose corners land on the
+  // shoulder bone and the upper-arm bone span the armpit and cross the sleeve's underside.
+  const test::NormalizedScene scene = test::load_normalized_scene("puffer", "goblin");
+  SkeletonShrinkOptions bones_only;
+  bones_only.max_collapse_rounds = 0;
+  bones_only.max_halvings = 0;
+  try {
+    shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton, scene.target_skeleton,
+                       scene.skin_weights, bones_only);
+    FAIL("the bones alone were expected to leave the armpit crossing the sleeve");
+  } catch (const NoValidShrinkError& e) {
+    REQUIRE(e.conflict().kind == ShrinkConflict::Kind::kSurfacesCross);
+  }
+
+  const SkeletonShrinkOptions options;
+  const ShrinkResult result = shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton,
+                                                 scene.target_skeleton, scene.skin_weights, options);
+  require_certified(scene.avatar, result, scene.garment);
+  REQUIRE(result.collapse_rounds >= 1);
+  REQUIRE(result.collapsed_vertices > 0);
+  // The fix is local: a small part of the avatar moves toward joints.
+  REQUIRE(result.collapsed_vertices < scene.avatar.vertices.rows() / 20);
+  REQUIRE(result.pullback == options.pullback);
+  REQUIRE_FALSE(has_coincident_corners({result.vertices, scene.avatar.faces}));
+}
+
+TEST_CASE("skeleton shrink pulls a face spanning a bent skeleton toward the joint",
+          "[shrink][skeleton]") {
+  // An L of bones 0-1 (along x) and 1-2 (along y), and one avatar triangle with a corner on
+  // each arm of the L and one above it. A small square garment sheet across the triangle's
+  // middle stays clear of the bones; the triangle must shrink toward joint 1 to clear it.
+  // With a third bone 2-3 the triangle's second arm is two bones away from the first:
+  // it then shrinks toward the bone between them.
+  const bool chain = GENERATE(false, true);
+  CAPTURE(chain);
+  Skeleton skeleton;
+  if (chain) {
+    skeleton.joints.resize(4, 3);
+    skeleton.joints << 0, 0, 0, 1, 0, 0, 1, 0.5, 0, 1, 1.5, 0;
+    skeleton.bones.resize(3, 2);
+    skeleton.bones << 0, 1, 1, 2, 2, 3;
+  } else {
+    skeleton.joints.resize(3, 3);
+    skeleton.joints << 0, 0, 0, 1, 0, 0, 1, 1.5, 0;
+    skeleton.bones.resize(2, 2);
+    skeleton.bones << 0, 1, 1, 2;
+  }
+  TriangleMesh avatar;
+  avatar.vertices.resize(3, 3);
+  avatar.vertices << 0.2, 0.0, 0.01, 1.0, 0.8, 0.01, 1.0, 1.0, 0.02;
+  avatar.faces.resize(1, 3);
+  avatar.faces << 0, 1, 2;
+  // A square of half side 0.1 centred on the triangle's first edge, facing along it.
+  const Vector3d center(0.6, 0.4, 0.0), along = Vector3d(0.8, 0.8, 0.0).normalized();
+  const Vector3d u = Vector3d::UnitZ(), w = along.cross(u);
+  TriangleMesh garment = square(0.1);
+  for (Eigen::Index v = 0; v < 4; ++v)
+    garment.vertices.row(v) =
+        (center + garment.vertices(v, 0) * u + garment.vertices(v, 1) * w).transpose();
+  REQUIRE(find_intersecting_face_pairs(avatar, garment).count == 1);
+
+  SkeletonShrinkOptions options;
+  options.max_halvings = 0;
+  const ShrinkResult result =
+      shrink_to_skeleton(avatar, garment, skeleton, skeleton, Eigen::MatrixXd(), options);
+  require_certified(avatar, result, garment);
+  REQUIRE(result.collapsed_vertices == 3);
+  REQUIRE(result.collapse_rounds >= 1);
+  REQUIRE_FALSE(has_coincident_corners({result.vertices, avatar.faces}));
+  // Every corner went toward the joints of the bend (on the path between the two arms),
+  // never to the far ends of the arms.
+  const Vector3d bend(1.0, chain ? 0.25 : 0.0, 0.0);
+  for (Eigen::Index v = 0; v < 3; ++v) {
+    CAPTURE(v, result.vertices.row(v));
+    REQUIRE((result.vertices.row(v).transpose() - bend).norm() <
+            (avatar.vertices.row(v).transpose() - bend).norm());
+  }
+
+  options.max_collapse_rounds = 0;
+  REQUIRE_THROWS_AS(
+      shrink_to_skeleton(avatar, garment, skeleton, skeleton, Eigen::MatrixXd(), options),
+      NoValidShrinkError);
+}
+
 TEST_CASE("skeleton shrink checks its inputs", "[shrink][skeleton]") {
   const test::NormalizedScene scene = test::load_normalized_scene("puffer", "goblin");
   REQUIRE(scene.skin_weights.cols() == scene.avatar.vertices.rows());
@@ -167,5 +265,10 @@ TEST_CASE("skeleton shrink checks its inputs", "[shrink][skeleton]") {
   zero.pullback = 0.0;
   REQUIRE_THROWS_AS(shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton,
                                        scene.target_skeleton, scene.skin_weights, zero),
+                    std::invalid_argument);
+  SkeletonShrinkOptions whole_step;
+  whole_step.collapse_step = 1.0;
+  REQUIRE_THROWS_AS(shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton,
+                                       scene.target_skeleton, scene.skin_weights, whole_step),
                     std::invalid_argument);
 }

@@ -84,6 +84,8 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
           avatar, garment, *normalized.source_skeleton, *normalized.target_skeleton, scene.skin_weights,
           shrink_options);
       report["pullback"] = run.shrink.pullback;
+      report["collapsed_vertices"] = run.shrink.collapsed_vertices;
+      report["collapse_rounds"] = run.shrink.collapse_rounds;
     }
   } catch (const NoValidShrinkError& e) {
     const ShrinkConflict& conflict = e.conflict();
@@ -128,8 +130,8 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
                                   "({} vertices in the medial region)",
                                   run.shrink.depth, run.shrink.medial_vertices)
                     : fmt::format("shrunk avatar certified free of the garment on the source "
-                                  "skeleton (pullback {:.3g})",
-                                  run.shrink.pullback);
+                                  "skeleton (pullback {:.3g}, {} vertices pulled toward joints)",
+                                  run.shrink.pullback, run.shrink.collapsed_vertices);
   return run;
 }
 
