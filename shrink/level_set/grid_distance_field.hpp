@@ -12,7 +12,8 @@ namespace gr {
 /// it continues smoothly as background + sqrt(r² + h²) − h, r the distance to that box and
 /// h the voxel size, so values keep growing away from the avatar with a continuous
 /// gradient. Between the narrow band and that box the value is the background and the
-/// gradient zero. Thread-safe: every call reads the shared grid through its own accessor.
+/// gradient zero; so it is inside, beyond the band of a narrow-band grid (at -background).
+/// Thread-safe: every call reads the shared grid through its own accessor.
 class GridDistanceField final : public DistanceField {
  public:
   /// Keeps a (shared) copy of `grid`. @throw std::logic_error when the grid is empty.

@@ -115,77 +115,153 @@ FloatGrid::Ptr unsigned_band(const TriangleMesh& avatar, double voxel_size, floa
   return grid;
 }
 
-/// The winding number at every voxel would dominate the build, yet it only changes across
-/// the surface (or near the caps of holes). A voxel at distance u from the surface shares
-/// its sign with any point closer than u (the segment between them does not cross the
-/// surface), so voxels far from the surface take the sign of the nearest point of a coarse
-/// lattice: spacing 4 voxels (at most 2√3 voxels away) when u > 3.5 voxels, spacing 2
-/// (at most √3 away) when u > 1.8 voxels; nearer voxels are evaluated themselves.
-constexpr double kCoarseLatticeDistance = 3.5;
-constexpr double kFineLatticeDistance = 1.8;
+/// The winding number at every voxel would dominate the build. It is evaluated at one
+/// voxel per 4×4×4 block of a leaf (local offsets 2 or 6 on each axis, at most 2√3 voxels
+/// from any voxel of the block) and carried to the block's other voxels along the segment
+/// between them: every triangle the segment crosses changes it by ±1, and the continuous
+/// rest, zero for closed surfaces, is left out. A voxel nearer to the centre than the
+/// centre's exact distance to the surface cannot be separated from it by the surface, so it
+/// needs no segment query (a block far from the surface needs none at all). A crossing that
+/// cannot be counted with confidence (grazing an edge, ending on a triangle) falls back to
+/// the voxel's own winding number.
+constexpr int kBlockVoxels = 4;
+constexpr int kBlocksPerAxis = FloatTree::LeafNodeType::DIM / kBlockVoxels;
+constexpr int kBlocksPerLeaf = kBlocksPerAxis * kBlocksPerAxis * kBlocksPerAxis;
+/// Crossings within this distance of an edge or an end, in voxels, are uncertain.
+constexpr double kCrossingToleranceVoxels = 1e-6;
+/// The continuous part is not small near a hole. Along a segment of length L at distance r
+/// from a hole's rim it changes by at most about L / (4r) per nearby rim, so within this
+/// many voxels of a rim (a quarter at most for the longest segment) every voxel of a block
+/// near the surface gets its own winding number...
+constexpr double kRimDistanceVoxels = 4.0;
+/// ...and so does every voxel of a block whose centre's winding number is farther than
+/// this from an integer (near a hole's opening, where no rim is close).
+constexpr double kFractionalWinding = 0.1;
 
-/// Lazily evaluated insideness at the lattice points around one leaf.
-class LeafLattice {
- public:
-  LeafLattice(const TriangleTree& surface, const Coord& origin, double voxel_size)
-      : surface_(surface), origin_(origin), voxel_size_(voxel_size) {
-    fine_.fill(kUnknown);
-    coarse_.fill(kUnknown);
-  }
-
-  /// Insideness of the lattice point (spacing 2 or 4) nearest to local voxel `offset`.
-  bool inside_near(const Coord& offset, int spacing) {
-    char* cache = spacing == 2 ? fine_.data() : coarse_.data();
-    const int per_axis = spacing == 2 ? 5 : 3;
-    int key = 0;
-    Coord lattice;
-    for (int a = 0; a < 3; ++a) {
-      const int step = (offset[a] + spacing / 2) / spacing;
-      key = key * per_axis + step;
-      lattice[a] = origin_[a] + step * spacing;
+/// The 4×4×4 blocks (block coordinates: voxel coordinates floor-divided by 4) within
+/// kRimDistanceVoxels of a boundary edge (an edge of exactly one face), sorted.
+std::vector<Coord> blocks_near_rims(const TriangleMesh& avatar, double voxel_size) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * static_cast<std::size_t>(avatar.faces.rows()));
+  for (Eigen::Index f = 0; f < avatar.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = avatar.faces(f, c), b = avatar.faces(f, (c + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
     }
-    char& known = cache[key];
-    if (known == kUnknown) known = inside_at(lattice) ? 1 : 0;
-    return known == 1;
+  std::sort(edges.begin(), edges.end());
+  auto block_of = [](double voxel) {
+    return static_cast<int>(std::floor(voxel / kBlockVoxels));
+  };
+  std::vector<Coord> blocks;
+  for (std::size_t e = 0; e < edges.size();) {
+    std::size_t same = e + 1;
+    while (same < edges.size() && edges[same] == edges[e]) ++same;
+    if (same - e == 1) {
+      const Vector3d a = avatar.vertices.row(edges[e].first).transpose() / voxel_size;
+      const Vector3d b = avatar.vertices.row(edges[e].second).transpose() / voxel_size;
+      // Samples at most a voxel apart; each marks the blocks its reach box touches.
+      const int samples = static_cast<int>(std::ceil((b - a).norm())) + 1;
+      for (int k = 0; k <= samples; ++k) {
+        const Vector3d x = a + (b - a) * (static_cast<double>(k) / samples);
+        for (int i = block_of(x.x() - kRimDistanceVoxels); i <= block_of(x.x() + kRimDistanceVoxels); ++i)
+          for (int j = block_of(x.y() - kRimDistanceVoxels); j <= block_of(x.y() + kRimDistanceVoxels); ++j)
+            for (int l = block_of(x.z() - kRimDistanceVoxels); l <= block_of(x.z() + kRimDistanceVoxels); ++l)
+              blocks.emplace_back(i, j, l);
+      }
+    }
+    e = same;
+  }
+  std::sort(blocks.begin(), blocks.end());
+  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+  return blocks;
+}
+
+/// The winding numbers of one leaf's voxels, from its block centres.
+class LeafWinding {
+ public:
+  LeafWinding(const TriangleTree& surface, const std::vector<Coord>& rim_blocks,
+              const Coord& origin, double voxel_size)
+      : surface_(surface), rim_blocks_(rim_blocks), origin_(origin), voxel_size_(voxel_size) {
+    known_.fill(false);
   }
 
-  bool inside_at(const Coord& ijk) const {
-    const openvdb::Vec3d p = world_of(ijk, voxel_size_);
-    return winding_number_inside(surface_.winding_number(Vector3d(p.x(), p.y(), p.z())));
+  /// Insideness of the voxel at local `offset`.
+  bool inside(const Coord& offset) {
+    int key = 0;
+    Coord centre;
+    for (int a = 0; a < 3; ++a) {
+      const int block = offset[a] / kBlockVoxels;
+      key = key * kBlocksPerAxis + block;
+      centre[a] = block * kBlockVoxels + kBlockVoxels / 2;
+    }
+    const Block& block = block_at(key, centre);
+    const double separation = (offset - centre).asVec3d().length();
+    if (separation < block.clear_radius) return winding_number_inside(block.winding);
+    const Vector3d p = world(origin_ + offset);
+    if (block.direct) return winding_number_inside(surface_.winding_number(p));
+    bool uncertain = false;
+    const int jumps = surface_.winding_jumps(world(origin_ + centre), p,
+                                             kCrossingToleranceVoxels * voxel_size_, &uncertain);
+    return winding_number_inside(uncertain ? surface_.winding_number(p) : block.winding + jumps);
   }
 
  private:
-  static constexpr char kUnknown = -1;
+  struct Block {
+    double winding = 0.0;       ///< at the centre voxel
+    double clear_radius = 0.0;  ///< the centre's distance to the surface, in voxels
+    bool direct = false;        ///< voxels beyond clear_radius need their own winding number
+  };
+
+  const Block& block_at(int key, const Coord& centre) {
+    Block& block = blocks_[static_cast<std::size_t>(key)];
+    if (known_[static_cast<std::size_t>(key)]) return block;
+    known_[static_cast<std::size_t>(key)] = true;
+    const Vector3d p = world(origin_ + centre);
+    block.winding = surface_.winding_number(p);
+    block.clear_radius = std::sqrt(surface_.distance_sq(p)) / voxel_size_;
+    const Coord block_coord(origin_.x() / kBlockVoxels, origin_.y() / kBlockVoxels,
+                            origin_.z() / kBlockVoxels);
+    const Coord index = block_coord + Coord(centre.x() / kBlockVoxels, centre.y() / kBlockVoxels,
+                                            centre.z() / kBlockVoxels);
+    block.direct = std::abs(block.winding - std::round(block.winding)) > kFractionalWinding ||
+                   std::binary_search(rim_blocks_.begin(), rim_blocks_.end(), index);
+    return block;
+  }
+
+  Vector3d world(const Coord& ijk) const {
+    return voxel_size_ * Vector3d(ijk.x(), ijk.y(), ijk.z());
+  }
+
   const TriangleTree& surface_;
+  const std::vector<Coord>& rim_blocks_;
   Coord origin_;
   double voxel_size_;
-  std::array<char, 125> fine_;
-  std::array<char, 27> coarse_;
+  std::array<bool, kBlocksPerLeaf> known_;
+  std::array<Block, kBlocksPerLeaf> blocks_;
 };
 
-/// Signs every voxel of every leaf by the winding number; inside voxels beyond the band
-/// are activated and marked pending.
-void sign_leaves(FloatTree& tree, const TriangleTree& surface, double voxel_size, float background,
+/// Signs every voxel of every leaf by the winding number. Inside voxels beyond the band
+/// become `deep_inside`: kInteriorPending (activated) for a full-depth grid, else
+/// -background (inactive).
+void sign_leaves(FloatTree& tree, const TriangleMesh& avatar, const TriangleTree& surface,
+                 double voxel_size, float background, float deep_inside,
                  const ProgressCallback& progress) {
+  const std::vector<Coord> rim_blocks = blocks_near_rims(avatar, voxel_size);
   LeafManager leaves(tree);
   ProgressForwarder forwarder(progress, "sign");
-  const double band_voxels = background / voxel_size;
   for_each_leaf(leaves, forwarder, [&](FloatTree::LeafNodeType& leaf) {
-    LeafLattice lattice(surface, leaf.origin(), voxel_size);
+    LeafWinding winding(surface, rim_blocks, leaf.origin(), voxel_size);
     for (openvdb::Index i = 0; i < FloatTree::LeafNodeType::SIZE; ++i) {
-      const bool active = leaf.isValueOn(i);
-      const float magnitude = std::abs(leaf.getValue(i));
-      // Inactive voxels lie beyond the band: at least band_voxels from the surface.
-      const double distance_voxels = active ? magnitude / voxel_size : band_voxels;
-      const Coord offset = FloatTree::LeafNodeType::offsetToLocalCoord(i);
-      const bool inside =
-          distance_voxels > kCoarseLatticeDistance ? lattice.inside_near(offset, 4)
-          : distance_voxels > kFineLatticeDistance ? lattice.inside_near(offset, 2)
-                                                   : lattice.inside_at(leaf.offsetToGlobalCoord(i));
-      if (active) {
+      const bool inside = winding.inside(FloatTree::LeafNodeType::offsetToLocalCoord(i));
+      if (leaf.isValueOn(i)) {
+        const float magnitude = std::abs(leaf.getValue(i));
         leaf.setValueOnly(i, inside ? -magnitude : magnitude);
       } else if (inside) {
-        leaf.setValueOn(i, kInteriorPending);
+        if (deep_inside == kInteriorPending) {
+          leaf.setValueOn(i, deep_inside);
+        } else {
+          leaf.setValueOff(i, deep_inside);
+        }
       } else {
         leaf.setValueOnly(i, background);
       }
@@ -193,8 +269,10 @@ void sign_leaves(FloatTree& tree, const TriangleTree& surface, double voxel_size
   });
 }
 
-/// Tiles (regions with no voxel of the band) inside the avatar become pending voxels.
-void fill_interior_tiles(FloatTree& tree, const TriangleTree& surface, double voxel_size) {
+/// Tiles (regions with no voxel of the band) inside the avatar take the value
+/// `deep_inside`: pending voxels for a full-depth grid, inactive -background tiles else.
+void fill_interior_tiles(FloatTree& tree, const TriangleTree& surface, double voxel_size,
+                         float deep_inside) {
   struct Tile {
     Coord origin;
     openvdb::Index level;
@@ -217,9 +295,10 @@ void fill_interior_tiles(FloatTree& tree, const TriangleTree& surface, double vo
   tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t t) {
     inside[t] = winding_number_inside(surface.winding_number(tiles[t].center));
   });
+  const bool pending = deep_inside == kInteriorPending;
   for (std::size_t t = 0; t < tiles.size(); ++t)
-    if (inside[t]) tree.addTile(tiles[t].level, tiles[t].origin, kInteriorPending, true);
-  tree.voxelizeActiveTiles();
+    if (inside[t]) tree.addTile(tiles[t].level, tiles[t].origin, deep_inside, pending);
+  if (pending) tree.voxelizeActiveTiles();
 }
 
 void fill_interior_distances(FloatTree& tree, const TriangleTree& surface, double voxel_size,
@@ -249,6 +328,7 @@ const SignedDistanceGrid::Impl& SignedDistanceGrid::impl() const {
 double SignedDistanceGrid::voxel_size() const { return impl().voxel_size; }
 double SignedDistanceGrid::background() const { return impl().background; }
 double SignedDistanceGrid::min_value() const { return impl().min_value; }
+bool SignedDistanceGrid::full_depth() const { return impl().full_depth; }
 std::size_t SignedDistanceGrid::active_voxel_count() const {
   return static_cast<std::size_t>(impl().grid->activeVoxelCount());
 }
@@ -282,14 +362,16 @@ SignedDistanceGrid build_signed_distance(const TriangleMesh& avatar, double voxe
   FloatTree& tree = grid->tree();
   const float background = tree.background();
 
-  sign_leaves(tree, surface, voxel_size, background, options.progress);
-  fill_interior_tiles(tree, surface, voxel_size);
-  fill_interior_distances(tree, surface, voxel_size, options.progress);
+  const float deep_inside = options.full_depth ? kInteriorPending : -background;
+  sign_leaves(tree, avatar, surface, voxel_size, background, deep_inside, options.progress);
+  fill_interior_tiles(tree, surface, voxel_size, deep_inside);
+  if (options.full_depth) fill_interior_distances(tree, surface, voxel_size, options.progress);
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
 
   auto impl = std::make_shared<SignedDistanceGrid::Impl>();
   impl->voxel_size = voxel_size;
   impl->background = background;
+  impl->full_depth = options.full_depth;
   const auto extrema = openvdb::tools::minMax(tree);
   impl->min_value = std::min(0.0f, extrema.min());
   impl->active_index_box = grid->evalActiveVoxelBoundingBox();

@@ -14,6 +14,7 @@ class SignedDistanceGrid::Impl {
   double voxel_size = 0.0;
   double background = 0.0;
   double min_value = 0.0;
+  bool full_depth = true;
   openvdb::CoordBBox active_index_box;  ///< index box of the active voxels
 };
 

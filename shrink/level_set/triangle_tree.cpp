@@ -220,4 +220,62 @@ double TriangleTree::exact_winding_number(const Vector3d& p) const {
   return solid_angle / kFourPi;
 }
 
+int TriangleTree::winding_jumps(const Vector3d& from, const Vector3d& to, double tolerance,
+                                bool* uncertain) const {
+  *uncertain = false;
+  Eigen::AlignedBox3d reach(from.cwiseMin(to), from.cwiseMax(to));
+  reach.min().array() -= tolerance;
+  reach.max().array() += tolerance;
+  int jumps = 0;
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0 && !*uncertain) {
+    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+    if (!node.box.intersects(reach)) continue;
+    if (node.left >= 0) {
+      stack[top++] = node.left;
+      stack[top++] = node.right;
+      continue;
+    }
+    for (int k = node.begin; k < node.end && !*uncertain; ++k) {
+      const Vector3d* t = &corners_[3 * static_cast<std::size_t>(k)];
+      const Vector3d normal = (t[1] - t[0]).cross(t[2] - t[0]);
+      const double length = normal.norm();
+      if (!(length > 0.0)) continue;  // a zero-area face adds nothing to winding numbers
+      // Heights of the ends over the triangle's plane.
+      const double h_from = normal.dot(from - t[0]) / length;
+      const double h_to = normal.dot(to - t[0]) / length;
+      // How far a point of the plane lies inside the triangle: its smallest distance to an
+      // edge's line, negative outside.
+      auto inside_by = [&](const Vector3d& x) {
+        double margin = std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 3; ++c) {
+          const Vector3d& a = t[(c + 1) % 3];
+          const Vector3d& b = t[(c + 2) % 3];
+          margin = std::min(margin, (a - x).cross(b - x).dot(normal) / (length * (b - a).norm()));
+        }
+        return margin;
+      };
+      const bool from_near = std::abs(h_from) <= tolerance, to_near = std::abs(h_to) <= tolerance;
+      if (from_near || to_near) {
+        // An end on the plane: uncertain when it lies over the triangle (or both ends do
+        // and the segment may run inside it).
+        if ((from_near && to_near) || inside_by(from_near ? from : to) > -tolerance)
+          *uncertain = true;
+        continue;
+      }
+      if ((h_from > 0.0) == (h_to > 0.0)) continue;
+      const Vector3d crossing = from + (h_from / (h_from - h_to)) * (to - from);
+      const double margin = inside_by(crossing);
+      if (margin > tolerance) {
+        jumps += h_from < 0.0 ? -1 : 1;
+      } else if (margin > -tolerance) {
+        *uncertain = true;
+      }
+    }
+  }
+  return jumps;
+}
+
 }  // namespace gr

@@ -46,6 +46,17 @@ class TriangleTree {
   /// Exact winding number at `p` summing every triangle (O(#F)), for checks.
   double exact_winding_number(const Vector3d& p) const;
 
+  /// The jumps of the winding number along the segment from `from` to `to`: −1 for every
+  /// triangle it crosses toward the side the triangle's normal points to, +1 the other way.
+  /// The winding number at `to` is the one at `from` plus this plus a continuous part that
+  /// is zero for closed surfaces (and small over short segments away from holes).
+  /// @param uncertain set when a crossing cannot be counted with confidence: an end on or
+  ///        within `tolerance` of a triangle's plane inside it, a crossing within
+  ///        `tolerance` of an edge, or a segment lying in a triangle's plane; the count is
+  ///        then meaningless. `tolerance` is in the mesh's units.
+  int winding_jumps(const Vector3d& from, const Vector3d& to, double tolerance,
+                    bool* uncertain) const;
+
   Eigen::AlignedBox3d bounds() const { return nodes_.front().box; }
 
  private:

@@ -79,6 +79,8 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
                              const SignedDistanceGrid& grid, const LevelsetShrinkOptions& options) {
   if (!(options.depth_tolerance > 0.0) || !(options.step_voxels > 0.0))
     throw std::invalid_argument("shrink_levelset: depth tolerance and step must be positive");
+  if (!grid.full_depth())
+    throw std::invalid_argument("shrink_levelset: the grid must hold distances at full depth");
   const auto start_time = std::chrono::steady_clock::now();
   report_progress(options.progress, "shrink", 0.0);
 

@@ -13,6 +13,11 @@ struct SkeletonShrinkOptions {
   /// target bone: small, so the shrunk avatar stays near the bones, but not zero, so no
   /// triangle collapses exactly onto a bone.
   double pullback = 0.05;
+  /// When the shrunk avatar still conflicts with the garment, the pullback is halved at
+  /// most this many times before giving up.
+  int max_halvings = 6;
+  /// Reports stage "shrink": one step per certification.
+  ProgressCallback progress;
   /// Rounds of pulling the vertices of crossing faces toward their anchors (below), each
   /// followed by a certification, before the pullback is halved.
   int max_collapse_rounds = 24;
@@ -20,11 +25,6 @@ struct SkeletonShrinkOptions {
   /// one round, in (0, 1): smaller moves fewer vertices farther than needed, larger needs
   /// fewer rounds.
   double collapse_step = 0.5;
-  /// When the shrunk avatar still conflicts with the garment, the pullback is halved at
-  /// most this many times before giving up.
-  int max_halvings = 6;
-  /// Reports stage "shrink": one step per certification.
-  ProgressCallback progress;
 };
 
 /// The skeleton shrunk avatar. Each avatar vertex goes to its bone of the *source* skeleton

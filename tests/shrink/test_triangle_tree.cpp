@@ -69,3 +69,40 @@ TEST_CASE("fast winding number and distance on the shared avatars", "[shrink][wi
   INFO("largest fast winding number error " << worst);
   CHECK(worst < 0.01);
 }
+
+TEST_CASE("winding jumps along segments match winding number differences", "[shrink][winding]") {
+  // On a closed surface the winding number changes only by its jumps.
+  TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.02, -0.01, 0.03), 12, 24);
+  const bool inverted = GENERATE(false, true);
+  if (inverted) sphere.faces.col(1).swap(sphere.faces.col(2));
+  CAPTURE(inverted);
+  const TriangleTree tree(sphere);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> coordinate(-0.8, 0.8);
+  int crossing = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vector3d from(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Vector3d to = from + 0.5 * Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
+    bool uncertain = true;
+    const int jumps = tree.winding_jumps(from, to, 1e-9, &uncertain);
+    CAPTURE(from.transpose(), to.transpose(), jumps);
+    REQUIRE_FALSE(uncertain);
+    REQUIRE(tree.exact_winding_number(from) + jumps ==
+            Approx(tree.exact_winding_number(to)).margin(1e-9));
+    crossing += jumps != 0;
+  }
+  CHECK(crossing > 30);
+
+  SECTION("an end on a face or a crossing through an edge is uncertain") {
+    const Vector3d a = sphere.vertices.row(sphere.faces(40, 0)).transpose();
+    const Vector3d b = sphere.vertices.row(sphere.faces(40, 1)).transpose();
+    const Vector3d c = sphere.vertices.row(sphere.faces(40, 2)).transpose();
+    const Vector3d normal = (b - a).cross(c - a).normalized();
+    bool uncertain = false;
+    tree.winding_jumps((a + b + c) / 3.0, (a + b + c) / 3.0 + 0.1 * normal, 1e-9, &uncertain);
+    REQUIRE(uncertain);
+    const Vector3d on_edge = 0.5 * (a + b);
+    tree.winding_jumps(on_edge - 0.1 * normal, on_edge + 0.1 * normal, 1e-9, &uncertain);
+    REQUIRE(uncertain);
+  }
+}
