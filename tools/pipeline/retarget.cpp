@@ -150,6 +150,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   stage = StageTimer();
   SignedDistanceOptions grid_options;
   grid_options.exterior_band = kFitBand;
+  // The level-set shrink walks to any depth; the fit needs only the band near the surface.
+  grid_options.full_depth = report.shrink_mode == "levelset";
   const SignedDistanceGrid grid =
       build_signed_distance(normalized.avatar, parameters.voxel_size, grid_options);
   const GridDistanceField distance_field(grid);
