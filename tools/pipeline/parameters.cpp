@@ -1,8 +1,11 @@
 #include "tools/pipeline/parameters.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace gr {
+
+double energy_tolerance_for(double eps_tol) { return 10.0 * std::sqrt(eps_tol); }
 
 PipelineParameters parameters_for_quality(const std::string& quality) {
   PipelineParameters p;
@@ -28,6 +31,7 @@ PipelineParameters parameters_for_quality(const std::string& quality) {
   } else {
     throw std::invalid_argument("unknown quality '" + quality + "' (fast, balanced, accurate)");
   }
+  s.newton.energy_tolerance = energy_tolerance_for(s.newton.gradient_tolerance);
   return p;
 }
 
@@ -37,7 +41,10 @@ void ParameterOverrides::apply_to(PipelineParameters& p) const {
   if (w_contact) s.w_contact = *w_contact;
   if (w_fit) s.w_fit = *w_fit;
   if (w_pos) s.w_pos = *w_pos;
-  if (eps_tol) s.newton.gradient_tolerance = *eps_tol;
+  if (eps_tol) {
+    s.newton.gradient_tolerance = *eps_tol;
+    s.newton.energy_tolerance = energy_tolerance_for(*eps_tol);
+  }
   if (voxel_size) p.voxel_size = *voxel_size;
   if (ccd_min_separation_ratio) s.ccd.min_separation_ratio = *ccd_min_separation_ratio;
   if (max_newton_iterations) s.newton.max_iterations = *max_newton_iterations;
