@@ -11,7 +11,7 @@ PipelineParameters parameters_for_quality(const std::string& quality) {
   PipelineParameters p;
   RetargetParameters& s = p.solver;
   if (quality == "fast") {
-    s.newton.gradient_tolerance = 1e-4;
+    s.newton.gradient_tolerance = 1e-5;
     s.newton.step_tolerance = 1e-4;
     s.newton.max_iterations = 150;
     s.fit_samples_per_face = 1;
