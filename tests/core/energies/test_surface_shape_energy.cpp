@@ -18,17 +18,23 @@ MatrixX3d rigidly_moved(const MatrixX3d& V, double angle, const Vector3d& axis, 
   return out;
 }
 
+/// Two random triangles sharing an edge (one element), from a seeded generator.
+TriangleMesh random_hinge(int seed) {
+  std::srand(static_cast<unsigned>(seed));
+  TriangleMesh rest;
+  rest.vertices = MatrixX3d::Random(4, 3);
+  rest.faces.resize(2, 3);
+  rest.faces << 0, 1, 2, 1, 0, 3;
+  return rest;
+}
+
 }  // namespace
 
 TEST_CASE("surface shape energy: element gradient and Hessian match finite differences",
           "[energies][surface][grad][hess]") {
   const int seed = GENERATE(1, 2, 3, 4);
   CAPTURE(seed);
-  std::srand(static_cast<unsigned>(seed));
-  TriangleMesh rest;
-  rest.vertices = MatrixX3d::Random(4, 3);
-  rest.faces.resize(2, 3);
-  rest.faces << 0, 1, 2, 1, 0, 3;
+  const TriangleMesh rest = random_hinge(seed);
   const SurfaceShapeEnergy energy(rest, DofLayout{4});
   REQUIRE(energy.elements().size() == 1);
   const auto& element = energy.elements()[0];
@@ -127,11 +133,7 @@ TEST_CASE("surface shape energy: the element's PSD Hessian stays close to the ex
   const int seed = GENERATE(1, 2, 3);
   const double perturbation = GENERATE(1e-7, 1e-4, 0.3);
   CAPTURE(seed, perturbation);
-  std::srand(static_cast<unsigned>(seed));
-  TriangleMesh rest;
-  rest.vertices = MatrixX3d::Random(4, 3);
-  rest.faces.resize(2, 3);
-  rest.faces << 0, 1, 2, 1, 0, 3;
+  const TriangleMesh rest = random_hinge(seed);
   const SurfaceShapeEnergy energy(rest, DofLayout{4});
   REQUIRE(energy.elements().size() == 1);
   const auto& element = energy.elements()[0];
