@@ -1,7 +1,10 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "core/candidates/contact_mesh.hpp"
 
@@ -27,6 +30,48 @@ struct Candidates {
   std::vector<EdgeEdgeCandidate> edge_edge;
   std::size_t size() const { return point_triangle.size() + edge_edge.size(); }
   bool empty() const { return size() == 0; }
+};
+
+/// Finds candidates (as find_candidates and find_swept_candidates below) for one contact
+/// mesh over many calls, keeping what stays valid between them:
+/// - the avatar's trees are reused while the avatar's vertex boxes and the radius are
+///   unchanged (in the fit the avatar does not move);
+/// - a static query whose vertices all lie in the vertex boxes of the last swept query
+///   (at no larger radius) filters that query's pairs instead of searching again: a pair
+///   close at such a point has its boxes inside the swept ones, so the swept list holds
+///   it. An accepted line-search point lies on the swept motion, so each Newton step
+///   searches the trees once.
+/// The lists keep the order of the search they come from, the same on any thread count.
+/// Not safe for concurrent use.
+class CandidateFinder {
+ public:
+  explicit CandidateFinder(ContactMesh mesh);
+  ~CandidateFinder();
+  CandidateFinder(const CandidateFinder&) = delete;
+  CandidateFinder& operator=(const CandidateFinder&) = delete;
+
+  const ContactMesh& mesh() const { return mesh_; }
+  /// As find_candidates. @throw std::invalid_argument when V has the wrong row count.
+  Candidates find(const Eigen::Ref<const MatrixX3d>& V, double inflation_radius);
+  /// As find_swept_candidates. @throw std::invalid_argument for a wrong row count.
+  Candidates find_swept(const Eigen::Ref<const MatrixX3d>& V0, const Eigen::Ref<const MatrixX3d>& V1,
+                        double inflation_radius);
+
+ private:
+  struct AvatarTrees;
+  using Box = Eigen::AlignedBox3d;
+
+  void check_positions(const Eigen::Ref<const MatrixX3d>& V) const;
+  Candidates box_pairs(const std::vector<Box>& vertex_boxes, double radius);
+  bool inside_swept_boxes(const std::vector<Box>& vertex_boxes) const;
+  Candidates filter_swept(const std::vector<Box>& vertex_boxes, double radius) const;
+
+  ContactMesh mesh_;
+  std::vector<int> avatar_points_;  ///< avatar vertices that some contact face uses
+  std::unique_ptr<AvatarTrees> avatar_trees_;
+  Candidates swept_;                ///< the last swept query's pairs
+  std::vector<Box> swept_boxes_;    ///< and its vertex boxes
+  double swept_radius_ = -1.0;
 };
 
 /// Every pair whose distance at `V` may be below `inflation_radius` (a superset: pairs

@@ -18,36 +18,36 @@ ContactEnergy::ContactEnergy(ContactMesh mesh, const Eigen::Ref<const MatrixX3d>
                              const Eigen::Ref<const MatrixX3d>& avatar_start,
                              const Eigen::Ref<const MatrixX3d>& avatar_end, double dhat,
                              const DofLayout& layout)
-    : mesh_(std::move(mesh)),
+    : finder_(std::move(mesh)),
       barrier_(dhat, stack_rows(garment_rest, avatar_end)),
       layout_(layout),
       avatar_start_(avatar_start),
       displacement_(avatar_end - avatar_start) {
   max_displacement_ = displacement_.rows() > 0 ? displacement_.rowwise().norm().maxCoeff() : 0.0;
-  const int garment_coordinates = 3 * mesh_.garment_vertex_count;
+  const int garment_coordinates = 3 * finder_.mesh().garment_vertex_count;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<std::size_t>(garment_coordinates + displacement_.size()));
-  for (int v = 0; v < mesh_.garment_vertex_count; ++v)
+  for (int v = 0; v < finder_.mesh().garment_vertex_count; ++v)
     for (int axis = 0; axis < 3; ++axis)
       entries.emplace_back(3 * v + axis, layout_.vertex_dof(v, axis), 1.0);
   if (layout_.t_free)
-    for (int a = 0; a < mesh_.avatar_vertex_count; ++a)
+    for (int a = 0; a < finder_.mesh().avatar_vertex_count; ++a)
       for (int axis = 0; axis < 3; ++axis)
         entries.emplace_back(garment_coordinates + 3 * a + axis, layout_.t_index(), displacement_(a, axis));
-  jacobian_.resize(3 * mesh_.vertex_count(), layout_.dof_count());
+  jacobian_.resize(3 * finder_.mesh().vertex_count(), layout_.dof_count());
   jacobian_.setFromTriplets(entries.begin(), entries.end());
   jacobian_transpose_ = jacobian_.transpose();
 }
 
 const MatrixX3d& ContactEnergy::stacked(const Eigen::Ref<const MatrixX3d>& V, double t) const {
-  stacked_.resize(mesh_.vertex_count(), 3);
-  stacked_.topRows(mesh_.garment_vertex_count) = V;
-  stacked_.bottomRows(mesh_.avatar_vertex_count) = avatar_start_ + t * displacement_;
+  stacked_.resize(mesh().vertex_count(), 3);
+  stacked_.topRows(mesh().garment_vertex_count) = V;
+  stacked_.bottomRows(mesh().avatar_vertex_count) = avatar_start_ + t * displacement_;
   return stacked_;
 }
 
 void ContactEnergy::update_candidates(const Eigen::Ref<const MatrixX3d>& V, double t) {
-  candidates_ = find_candidates(mesh_, stacked(V, t), barrier_.dhat());
+  candidates_ = finder_.find(stacked(V, t), barrier_.dhat());
 }
 
 double ContactEnergy::update_swept_candidates(const Eigen::Ref<const MatrixX3d>& V0, double t0,
@@ -55,7 +55,7 @@ double ContactEnergy::update_swept_candidates(const Eigen::Ref<const MatrixX3d>&
                                               const CcdOptions& ccd) {
   const MatrixX3d start = stacked(V0, t0);
   const MatrixX3d& end = stacked(V1, t1);
-  candidates_ = find_swept_candidates(mesh_, start, end, barrier_.dhat());
+  candidates_ = finder_.find_swept(start, end, barrier_.dhat());
   return max_step(candidates_, start, end, ccd);
 }
 

@@ -28,7 +28,7 @@ class ContactEnergy {
                 const Eigen::Ref<const MatrixX3d>& avatar_start,
                 const Eigen::Ref<const MatrixX3d>& avatar_end, double dhat, const DofLayout& layout);
 
-  const ContactMesh& mesh() const { return mesh_; }
+  const ContactMesh& mesh() const { return finder_.mesh(); }
   const Candidates& candidates() const { return candidates_; }
   double dhat() const { return barrier_.dhat(); }
 
@@ -58,7 +58,7 @@ class ContactEnergy {
   double minimum_distance(const Eigen::Ref<const MatrixX3d>& V, double t) const;
 
  private:
-  ContactMesh mesh_;
+  CandidateFinder finder_;
   BarrierPotential barrier_;
   DofLayout layout_;
   MatrixX3d avatar_start_, displacement_;

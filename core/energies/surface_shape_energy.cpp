@@ -13,6 +13,10 @@ using ReducedJacobian = Eigen::Matrix<double, 3, 9>;
 using ReducedMatrix = Eigen::Matrix<double, 9, 9>;
 using Reduction = Eigen::Matrix<double, 9, 12>;
 
+/// Below this ratio (Frobenius norms) of the Hessian's second-order part to its
+/// Gauss–Newton part the projection is replaced by Gauss–Newton (see element_hessian).
+constexpr double kGaussNewtonRatio = 1e-3;
+
 /// [v]×, so that cross_matrix(v) * u = v × u.
 Eigen::Matrix3d cross_matrix(const Vector3d& v) {
   Eigen::Matrix3d m;
@@ -32,6 +36,23 @@ const Reduction& reduction() {
     return m;
   }();
   return T;
+}
+
+/// Tᵀ M T for the reduction T below, by blocks: vertex 0's rows and columns are minus the
+/// sums of the others'.
+LocalMatrix expand_reduced(const ReducedMatrix& M) {
+  LocalMatrix h;
+  h.bottomRightCorner<9, 9>() = M;
+  Eigen::Matrix3d total = Eigen::Matrix3d::Zero();
+  for (int j = 0; j < 3; ++j) {
+    Eigen::Matrix3d column_sum = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < 3; ++i) column_sum += M.block<3, 3>(3 * i, 3 * j);
+    h.block<3, 3>(0, 3 + 3 * j) = -column_sum;
+    h.block<3, 3>(3 + 3 * j, 0) = -column_sum.transpose();
+    total += column_sum;
+  }
+  h.topLeftCorner<3, 3>() = total;
+  return h;
 }
 
 /// r = r1 - r2 and, when asked, its 3×9 Jacobian with respect to (e, u1, u2).
@@ -136,15 +157,26 @@ void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVect
   const Vector3d r = reconstruction_difference(element, q, &J);
   ReducedMatrix reduced = J.transpose() * J;
   // Second-order part: r·(e × u) = eᵀ B u with B = -[r]×, for (e, u1) and (e, u2).
+  ReducedMatrix second = ReducedMatrix::Zero();
   const Eigen::Matrix3d B = -cross_matrix(r);
   const double c1 = element.coefficients_first[2], c2 = element.coefficients_second[2];
-  reduced.block<3, 3>(0, 3) += c1 * B;
-  reduced.block<3, 3>(3, 0) += c1 * B.transpose();
-  reduced.block<3, 3>(0, 6) -= c2 * B;
-  reduced.block<3, 3>(6, 0) -= c2 * B.transpose();
+  second.block<3, 3>(0, 3) = c1 * B;
+  second.block<3, 3>(3, 0) = c1 * B.transpose();
+  second.block<3, 3>(0, 6) = -c2 * B;
+  second.block<3, 3>(6, 0) = -c2 * B.transpose();
+  // JᵀJ is PSD, so the exact Hessian's negative eigenvalues are at most |second| in size
+  // and the projection moves it by no more than that; dropping `second` (Gauss–Newton)
+  // moves it by |second|. When that is negligible against JᵀJ the two are equally good
+  // PSD stand-ins, and Gauss–Newton needs no eigen-decomposition (most elements: the
+  // residual r is small wherever the shape is kept).
+  const bool gauss_newton =
+      project_psd && second.squaredNorm() <= kGaussNewtonRatio * kGaussNewtonRatio * reduced.squaredNorm();
+  if (!gauss_newton) {
+    reduced += second;
+    if (project_psd) reduced = project_to_psd(reduced);
+  }
   reduced *= 2.0 * element.weight;
-  if (project_psd) reduced = project_to_psd(reduced);
-  h = reduction().transpose() * reduced * reduction();
+  h = expand_reduced(reduced);
 }
 
 double SurfaceShapeEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {

@@ -49,7 +49,10 @@ class SurfaceShapeEnergy {
   /// Hessian over x. With `project_psd` each element's Hessian is projected to PSD in the
   /// element's edge-vector coordinates (e, u1, u2): the energy depends on the 12
   /// coordinates only through these 9 (translation invariance), H = Tᵀ Ĥ T, and Tᵀ Ĥ⁺ T is
-  /// PSD at the cost of a 9×9 rather than a 12×12 eigendecomposition.
+  /// PSD at the cost of a 9×9 rather than a 12×12 eigendecomposition. Where the
+  /// second-order part (linear in the residual) is below 1e-3 of the Gauss–Newton part JᵀJ
+  /// (Frobenius norms) the element uses JᵀJ instead, PSD without a decomposition and as
+  /// close to the exact Hessian as the projection would be, up to that ratio.
   const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
                                              bool project_psd = true) const;
 

@@ -23,6 +23,21 @@ const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage sta
   return scene;
 }
 
+/// target += weight · A, where A's pattern is within target's (both compressed, same size).
+void add_within_pattern(const Eigen::SparseMatrix<double>& A, double weight,
+                        Eigen::SparseMatrix<double>& target) {
+  const int* outer = target.outerIndexPtr();
+  const int* inner = target.innerIndexPtr();
+  double* values = target.valuePtr();
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
+    int k = outer[c];
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
+      while (inner[k] < it.index()) ++k;
+      values[k] += weight * it.value();
+    }
+  }
+}
+
 }  // namespace
 
 GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters,
@@ -93,12 +108,24 @@ void GarmentProblem::hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<do
                                 bool project_psd) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  hessian = parameters_.w_surf * surface_.hessian(V, project_psd);
-  hessian += parameters_.w_contact * contact_.hessian(V, t, project_psd);
-  if (position_) hessian += parameters_.w_pos * position_->hessian(V, t, project_psd);
-  if (fit_) hessian += parameters_.w_fit * fit_->hessian(V, project_psd);
-  // The surface term's pattern holds the whole diagonal, so this entry exists.
-  if (layout_.t_free) hessian.coeffRef(layout_.t_index(), layout_.t_index()) += constraint_.second_derivative();
+  const Eigen::SparseMatrix<double>& surface = surface_.hessian(V, project_psd);
+  const Eigen::SparseMatrix<double>* position = position_ ? &position_->hessian(V, t, project_psd) : nullptr;
+  const Eigen::SparseMatrix<double>* fit = fit_ ? &fit_->hessian(V, project_psd) : nullptr;
+  // Every term but contact keeps its pattern: their sum goes into a union pattern made once
+  // (the surface term's pattern holds the whole diagonal, so the t entry exists).
+  if (fixed_hessian_.size() == 0) {
+    Eigen::SparseMatrix<double> pattern = surface;
+    if (position) pattern += *position;
+    if (fit) pattern += *fit;
+    pattern.makeCompressed();
+    fixed_hessian_ = std::move(pattern);
+  }
+  std::fill(fixed_hessian_.valuePtr(), fixed_hessian_.valuePtr() + fixed_hessian_.nonZeros(), 0.0);
+  add_within_pattern(surface, parameters_.w_surf, fixed_hessian_);
+  if (position) add_within_pattern(*position, parameters_.w_pos, fixed_hessian_);
+  if (fit) add_within_pattern(*fit, parameters_.w_fit, fixed_hessian_);
+  if (layout_.t_free) fixed_hessian_.coeffRef(layout_.t_index(), layout_.t_index()) += constraint_.second_derivative();
+  hessian = fixed_hessian_ + parameters_.w_contact * contact_.hessian(V, t, project_psd);
   hessian.makeCompressed();
 }
 

@@ -94,6 +94,8 @@ class GarmentProblem : public Problem {
   std::optional<FitEnergy> fit_;
   AvatarConstraint constraint_;
   Eigen::VectorXd term_gradient_;
+  /// Sum of the terms whose Hessian pattern is fixed (all but contact), in their union pattern.
+  Eigen::SparseMatrix<double> fixed_hessian_;
 };
 
 }  // namespace gr

@@ -1,10 +1,35 @@
 #include "core/solver/linear_solver.hpp"
 
 #include <algorithm>
+#include <mutex>
+
+// Thread controls of the dense kernels under CHOLMOD, looked up at run time: present when
+// CHOLMOD is built with OpenMP and the BLAS is OpenBLAS, absent (null) otherwise.
+extern "C" {
+__attribute__((weak)) void openblas_set_num_threads(int threads);
+__attribute__((weak)) void omp_set_max_active_levels(int levels);
+}
 
 namespace gr {
+namespace {
+
+/// Runs CHOLMOD's supernodal kernels on the calling thread. CHOLMOD asks OpenMP for four
+/// threads and OpenBLAS for one per core whatever the machine; both spin while waiting,
+/// and on a small machine they compete with the TBB workers that assemble the next
+/// Hessian. For the garment problems (about 10k unknowns) one thread per factorization is
+/// faster overall, and the factor no longer depends on the thread count.
+void use_single_threaded_dense_kernels() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (openblas_set_num_threads) openblas_set_num_threads(1);
+    if (omp_set_max_active_levels) omp_set_max_active_levels(0);
+  });
+}
+
+}  // namespace
 
 LinearSolver::LinearSolver() {
+  use_single_threaded_dense_kernels();
   // A failed factorization is an expected outcome (the caller shifts and retries), not
   // something CHOLMOD should print.
   cholesky_.cholmod().print = 0;

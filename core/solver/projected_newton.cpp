@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <deque>
 
 #include <fmt/format.h>
 
@@ -56,6 +57,8 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
 
   Eigen::VectorXd g, direction, trial;
   Eigen::SparseMatrix<double> H;
+  // Energies at the last energy_window + 1 accepted points, the current one last.
+  std::deque<double> recent_energies{energy};
   for (;;) {
     problem.gradient(x, g);
     result.gradient_norm = g.norm();
@@ -71,6 +74,18 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
       return finish(SolverStatus::kIterationLimit,
                     fmt::format("{} steps without converging (RMS gradient {:.3g})",
                                 result.iterations, result.gradient_norm / sqrt_dofs));
+
+    const int window = options_.energy_window;
+    if (options_.energy_tolerance > 0.0 && window > 0 &&
+        static_cast<int>(recent_energies.size()) > window) {
+      const double decrease = recent_energies.front() - energy;
+      if (decrease <= options_.energy_tolerance * std::abs(energy))
+        return finish(SolverStatus::kConverged,
+                      fmt::format("energy fell by {:.3g} (relative {:.3g} <= {:.3g}) over the last "
+                                  "{} steps, after {} steps",
+                                  decrease, decrease / std::abs(energy), options_.energy_tolerance,
+                                  window, result.iterations));
+    }
 
     problem.hessian(x, H);
     const bool newton = newton_direction(H, g, direction);
@@ -112,6 +127,9 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     energy = trial_energy;
     ++result.iterations;
     result.energy = energy;
+    recent_energies.push_back(energy);
+    if (static_cast<int>(recent_energies.size()) > options_.energy_window + 1)
+      recent_energies.pop_front();
     problem.solution_changed(x);
     if (progress) progress({result.iterations, energy, alpha, result.gradient_norm, elapsed()});
   }

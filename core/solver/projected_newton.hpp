@@ -11,7 +11,7 @@ namespace gr {
 
 /// How a solve ended. Only kConverged means the returned point meets the tolerances.
 enum class SolverStatus {
-  kConverged,        ///< gradient or Newton step below its tolerance
+  kConverged,        ///< gradient, Newton step or energy decrease below its tolerance
   kIterationLimit,   ///< max_iterations accepted steps without converging
   kNoDescent,        ///< no step along the search direction lowered the energy (or CCD allowed none)
   kNonFiniteEnergy,  ///< the energy or gradient at the current point is not finite
@@ -30,6 +30,14 @@ struct NewtonOptions {
   /// minimizer within this distance. Garment energies mix stiffnesses over eight orders of
   /// magnitude (contact against shape), which makes a length the more meaningful test.
   double step_tolerance = 1e-6;
+  /// Also converged when the energy fell by no more than this fraction of its value over
+  /// the last `energy_window` accepted steps (0 turns the test off). Near contact the
+  /// barrier's curvature is only seen once pairs come within dhat, so line searches keep
+  /// cutting steps far below the Newton step and the gradient and step tests, which look
+  /// at one point, are not met for hundreds of steps while the energy barely moves; this
+  /// test looks at what the steps achieve instead.
+  double energy_tolerance = 0.0;
+  int energy_window = 10;
   /// A Newton direction that would move something further than this (Problem::step_length)
   /// is scaled down to it before CCD. Ill-conditioned problems (soft, nearly free modes)
   /// otherwise propose huge motions whose swept volumes meet everything.
@@ -68,7 +76,8 @@ struct NewtonResult {
 
 /// Projected Newton (Algorithm 2 of the supplement): Hessian from the problem (projected
 /// per element), direction from CHOLMOD, step bounded by the problem's max_step (CCD),
-/// halved until the energy does not increase, stop on the tolerances or the iteration cap.
+/// halved until the energy does not increase, stop on the tolerances (gradient, Newton step,
+/// energy decrease over a window of steps) or the iteration cap.
 /// Keeps its factorization between solves, so repeated solves on one pattern reuse the
 /// symbolic analysis.
 class ProjectedNewton {

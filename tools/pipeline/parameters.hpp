@@ -9,7 +9,8 @@ namespace gr {
 
 /// Every numerical knob of a retarget run, in normalized scene units (body about 2 tall):
 /// the solver's and the signed-distance grid's. A quality preset sets them together; each
-/// can be overridden on its own.
+/// can be overridden on its own (overriding eps_tol also sets the energy tolerance that
+/// goes with it).
 struct PipelineParameters {
   RetargetParameters solver;
   double voxel_size = 0.01;  ///< signed-distance grid spacing
@@ -20,6 +21,12 @@ struct PipelineParameters {
 /// resolution and fit quadrature.
 /// @throw std::invalid_argument for any other name.
 PipelineParameters parameters_for_quality(const std::string& quality);
+
+/// The Newton solver's relative energy-decrease tolerance (over its window of steps) that
+/// goes with a gradient tolerance eps_tol: 10 sqrt(eps_tol), so 10% for the fast preset's
+/// 1e-4, 1% for balanced (1e-6) and 0.1% for accurate (1e-8): a tighter eps_tol asks for
+/// more of the slow final progress that contact causes (see NewtonOptions).
+double energy_tolerance_for(double eps_tol);
 
 /// Individual overrides given on the command line; unset ones keep the preset's value.
 struct ParameterOverrides {

@@ -18,6 +18,8 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"w_pos", p.solver.w_pos},
         {"eps_tol", p.solver.newton.gradient_tolerance},
         {"step_tolerance", p.solver.newton.step_tolerance},
+        {"energy_tolerance", p.solver.newton.energy_tolerance},
+        {"energy_window", p.solver.newton.energy_window},
         {"max_newton_iterations", p.solver.newton.max_iterations},
         {"max_al_rounds", p.solver.max_al_rounds},
         {"voxel_size", p.voxel_size},

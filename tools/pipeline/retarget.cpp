@@ -255,8 +255,9 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   {
     GarmentProblem final_problem(problem_scene, parameters.solver, GarmentProblem::Stage::kFit);
     const Eigen::VectorXd x = final_problem.layout().pack(1.0, fit.garment);
-    report.final_energies = final_problem.term_values(x);
+    // minimum_distance finds the contact pairs at x first; the contact term needs them.
     report.min_distance = final_problem.minimum_distance(x);
+    report.final_energies = final_problem.term_values(x);
     const auto& faces = normalized.garment.faces;
     double rest_area = 0.0;
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {

@@ -216,3 +216,25 @@ TEST_CASE("swept broad phase finds every pair close along the motion", "[candida
   CHECK(check_against_brute_force(scene.mesh, (0.5 * (scene.V + V1)).eval(), swept, radius, 17) > 0);
   CHECK(swept.size() >= gr::find_candidates(scene.mesh, scene.V, radius).size());
 }
+
+TEST_CASE("candidate finder: static queries on a swept motion reuse its pairs", "[candidates][shared]") {
+  // A point on the last swept motion filters the swept list; one off it searches again.
+  // Either way every pair within the radius must be found.
+  const SharedScene scene = generated_scene();
+  const double radius = 0.005;
+  MatrixX3d V1 = scene.V;
+  V1.topRows(scene.mesh.garment_vertex_count).col(1).array() += 0.01;
+  gr::CandidateFinder finder(scene.mesh);
+  const gr::Candidates swept = finder.find_swept(scene.V, V1, radius);
+  const MatrixX3d on_motion = 0.3 * scene.V + 0.7 * V1;
+  const gr::Candidates filtered = finder.find(on_motion, radius);
+  CHECK(filtered.size() <= swept.size());
+  CHECK(filtered.size() < gr::find_swept_candidates(scene.mesh, scene.V, V1, radius).size());
+  CHECK(check_against_brute_force(scene.mesh, on_motion, filtered, radius, 17) > 0);
+
+  MatrixX3d off_motion = V1;
+  off_motion.topRows(scene.mesh.garment_vertex_count).col(1).array() += 0.01;
+  const gr::Candidates searched = finder.find(off_motion, radius);
+  CHECK(check_against_brute_force(scene.mesh, off_motion, searched, radius, 17) > 0);
+  CHECK(searched.size() == gr::find_candidates(scene.mesh, off_motion, radius).size());
+}

@@ -18,17 +18,23 @@ MatrixX3d rigidly_moved(const MatrixX3d& V, double angle, const Vector3d& axis, 
   return out;
 }
 
+/// Two random triangles sharing an edge (one element), from a seeded generator.
+TriangleMesh random_hinge(int seed) {
+  std::srand(static_cast<unsigned>(seed));
+  TriangleMesh rest;
+  rest.vertices = MatrixX3d::Random(4, 3);
+  rest.faces.resize(2, 3);
+  rest.faces << 0, 1, 2, 1, 0, 3;
+  return rest;
+}
+
 }  // namespace
 
 TEST_CASE("surface shape energy: element gradient and Hessian match finite differences",
           "[energies][surface][grad][hess]") {
   const int seed = GENERATE(1, 2, 3, 4);
   CAPTURE(seed);
-  std::srand(static_cast<unsigned>(seed));
-  TriangleMesh rest;
-  rest.vertices = MatrixX3d::Random(4, 3);
-  rest.faces.resize(2, 3);
-  rest.faces << 0, 1, 2, 1, 0, 3;
+  const TriangleMesh rest = random_hinge(seed);
   const SurfaceShapeEnergy energy(rest, DofLayout{4});
   REQUIRE(energy.elements().size() == 1);
   const auto& element = energy.elements()[0];
@@ -117,4 +123,32 @@ TEST_CASE("surface shape energy: the t-free layout shifts garment dofs by one",
   const Eigen::MatrixXd H_fixed = fixed_t.hessian(V);
   CHECK((H_free.bottomRightCorner(3 * n, 3 * n) - H_fixed).norm() == 0.0);
   CHECK(H_free.row(0).norm() == 0.0);
+}
+
+TEST_CASE("surface shape energy: the element's PSD Hessian stays close to the exact one",
+          "[energies][surface][hess]") {
+  // Near rest the second-order part is negligible and Gauss–Newton stands in for the
+  // projection; far from rest the projection is used. Both must be PSD and near the exact
+  // Hessian: no further from it than the size of its negative part plus that ratio.
+  const int seed = GENERATE(1, 2, 3);
+  const double perturbation = GENERATE(1e-7, 1e-4, 0.3);
+  CAPTURE(seed, perturbation);
+  const TriangleMesh rest = random_hinge(seed);
+  const SurfaceShapeEnergy energy(rest, DofLayout{4});
+  REQUIRE(energy.elements().size() == 1);
+  const auto& element = energy.elements()[0];
+  using Local = SurfaceShapeEnergy::LocalVector;
+  Local q;
+  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = rest.vertices.row(element.vertices[v]).transpose();
+  q += perturbation * Local::Random();
+
+  SurfaceShapeEnergy::LocalMatrix exact, psd;
+  SurfaceShapeEnergy::element_hessian(element, q, exact, false);
+  SurfaceShapeEnergy::element_hessian(element, q, psd, true);
+  const Eigen::SelfAdjointEigenSolver<SurfaceShapeEnergy::LocalMatrix> exact_eigen(exact), psd_eigen(psd);
+  const double scale = exact.norm();
+  CHECK(psd_eigen.eigenvalues().minCoeff() >= -1e-12 * scale);
+  const double negative_part = (-exact_eigen.eigenvalues().array()).max(0.0).matrix().norm();
+  CHECK((psd - exact).norm() <= 2.0 * negative_part + 2e-3 * scale);
+  if (perturbation < 1e-6) CHECK((psd - exact).norm() <= 1e-5 * scale);
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -188,6 +190,43 @@ TEST_CASE("projected Newton: steps stay within the problem's safe bound", "[solv
   });
   CHECK(steps > 1);
   CHECK((x - solution).lpNorm<Eigen::Infinity>() < 1e-5);
+}
+
+TEST_CASE("projected Newton: stops when the energy stagnates over its window", "[solver][newton]") {
+  // A tiny safe bound makes every step a small fraction of the Newton step: the energy
+  // keeps falling, ever more slowly, and neither the gradient nor the step test is met.
+  struct Creeping : QuadraticProblem {
+    Creeping() : QuadraticProblem(4) {}
+    double max_step(const Eigen::VectorXd&, const Eigen::VectorXd&) override { return 0.01; }
+  };
+  NewtonOptions options;
+  options.max_iterations = 5000;
+  options.energy_window = 5;
+  SECTION("with the test") {
+    Creeping problem;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(4);
+    options.energy_tolerance = 1e-3;
+    std::vector<double> energies{problem.value(x)};
+    const NewtonResult result = ProjectedNewton(options).minimize(
+        problem, x, [&](const NewtonProgress& p) { energies.push_back(p.energy); });
+    CHECK(result.status == SolverStatus::kConverged);
+    CHECK(result.message.find("energy fell") != std::string::npos);
+    REQUIRE(result.iterations >= options.energy_window);
+    const double last = energies.back();
+    const double before = energies[energies.size() - 1 - static_cast<std::size_t>(options.energy_window)];
+    CHECK(before - last <= options.energy_tolerance * std::abs(last));
+    // One window earlier the decrease was still above the tolerance.
+    const double earlier = energies[energies.size() - 2 - static_cast<std::size_t>(options.energy_window)];
+    const double previous = energies[energies.size() - 2];
+    CHECK(earlier - previous > options.energy_tolerance * std::abs(previous));
+  }
+  SECTION("without it the solve runs on") {
+    Creeping problem;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(4);
+    options.energy_tolerance = 0.0;
+    options.max_iterations = 300;
+    CHECK(ProjectedNewton(options).minimize(problem, x).status == SolverStatus::kIterationLimit);
+  }
 }
 
 TEST_CASE("linear solver: symbolic analysis reused within the analysed pattern; shift on failure",
