@@ -48,7 +48,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
       return finish(InflationStatus::kSolverFailure,
                     fmt::format("round {}: {}", result.rounds, solve.message));
 
-    InflationRound round{result.rounds, layout.t(x), 0.0, 0.0, 0.0, false, false, solve};
+    InflationRound round{result.rounds, layout.t(x), 0.0, 0.0, 0.0, false, false, solve, {}};
     round.eta = 1.0 - std::sqrt(std::abs(1.0 - round.t));
     if (on_round) round.garment = layout.garment(x);
     if (round.eta < 0.0) {
