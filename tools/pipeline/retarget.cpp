@@ -106,12 +106,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
 
   // Read.
   StageTimer stage;
-  progress.log("read", "{} on {}", options.inputs.garment, options.inputs.avatar);
   const Scene scene = load_scene(options.inputs);
-  for (const auto& warning : scene.warnings) {
-    progress.log("warning", "{}", warning);
-    report.warnings.push_back(warning);
-  }
   const bool has_skeletons = scene.source_skeleton.has_value();
   report.shrink_mode = options.shrink_mode.empty() ? (has_skeletons ? "skeleton" : "levelset")
                                                    : options.shrink_mode;
@@ -129,6 +124,12 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const Normalization& frames = normalized.normalization;
   report.scene_scale = frames.avatar_to_scene.scale;
   require_garment_free_of_itself(scene, normalized.garment);
+  // Logged once the input is read and checked, so that bad input gives one line: the error.
+  progress.log("read", "{} on {}", options.inputs.garment, options.inputs.avatar);
+  for (const auto& warning : scene.warnings) {
+    progress.log("warning", "{}", warning);
+    report.warnings.push_back(warning);
+  }
   report.garment_vertices = static_cast<int>(normalized.garment.vertices.rows());
   report.garment_faces = static_cast<int>(normalized.garment.faces.rows());
   report.avatar_faces_total = static_cast<int>(normalized.avatar.faces.rows());
@@ -271,6 +272,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                report.seconds.fit);
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy)
     return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
+  if (fit.solve.status == SolverStatus::kIterationLimit)
+    return finish(RetargetStatus::kSolverFailure,
+                  "fit failed: " + fit.solve.message +
+                      "; allow more steps with --max-newton-iterations or loosen --eps-tol");
   if (!fit.solve.converged())
     report.warnings.push_back("fit stopped before its tolerance: " + fit.solve.message +
                               " (the garment is still intersection free)");

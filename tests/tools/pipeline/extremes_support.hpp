@@ -118,6 +118,9 @@ inline RetargetOptions quiet_options(const std::string& garment, const std::stri
 
 /// Signed-distance grid spacing for the synthetic scenes (normalized units).
 constexpr double kSyntheticVoxelSize = 0.05;
+/// Newton steps per solve for the synthetic scenes: open patches with free boundaries
+/// converge more slowly than the fast preset's 150 allow.
+constexpr int kSyntheticNewtonCap = 300;
 
 /// A regular octahedron |x| + |y| + |z| = 1: its box is exactly [-1, 1]³, so the
 /// normalization is the identity and edge midpoints such as (0.5, 0.5, 0) are exact.
@@ -235,6 +238,7 @@ inline RetargetOptions synthetic_scene(const std::string& name, const TriangleMe
       quiet_options((dir / "garment.obj").string(), (dir / "avatar.obj").string(), dir / "out");
   // The spheres are smooth at this resolution; a finer grid only costs time.
   options.overrides.voxel_size = kSyntheticVoxelSize;
+  options.overrides.max_newton_iterations = kSyntheticNewtonCap;
   return options;
 }
 

@@ -60,7 +60,7 @@ Outcome retarget_transformed(double scale, const Vector3d& shift, const std::str
 
 TEST_CASE("extremes: the bundled scene scaled by 1e-3 and 1e3 and moved by 1e4 gives the "
           "same certified garment",
-          "[pipeline][extremes][scale]") {
+          "[pipeline][extremes][scale][heavy]") {
   const ObjDocument avatar = read_obj(test::project_file(kScene + "avatar.obj"));
   const double scene_size =
       (avatar.positions.colwise().maxCoeff() - avatar.positions.colwise().minCoeff()).maxCoeff();
