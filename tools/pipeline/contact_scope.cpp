@@ -25,4 +25,14 @@ std::vector<int> reachable_avatar_faces(const Eigen::Ref<const MatrixX3d>& garme
   return reachable;
 }
 
+bool within_contact_scope(const Eigen::Ref<const MatrixX3d>& start,
+                          const Eigen::Ref<const MatrixX3d>& garment, double margin, double dhat) {
+  const double reach = margin - dhat;
+  const Eigen::Array3d lo = start.colwise().minCoeff().transpose().array() - reach;
+  const Eigen::Array3d hi = start.colwise().maxCoeff().transpose().array() + reach;
+  const Eigen::Array3d now_lo = garment.colwise().minCoeff().transpose().array();
+  const Eigen::Array3d now_hi = garment.colwise().maxCoeff().transpose().array();
+  return (now_lo > lo).all() && (now_hi < hi).all();
+}
+
 }  // namespace gr

@@ -35,7 +35,7 @@ struct RetargetReport {
   std::string fit_status;
   std::map<std::string, double> final_energies;  ///< each term's value after the fit
 
-  double min_distance = 0.0;      ///< garment–avatar, normalized units (solver's view)
+  double min_distance = 0.0;      ///< garment–avatar and garment–garment, normalized units (solver's view, pairs within dhat; else the certified garment–avatar clearance)
   double scene_scale = 1.0;       ///< normalized units per avatar file unit
   FitError fit_error;             ///< avatar file units
   Distortion distortion;

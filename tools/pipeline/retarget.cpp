@@ -1,6 +1,7 @@
 #include "tools/pipeline/retarget.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <optional>
@@ -185,9 +186,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   problem_scene.shrunk_avatar = shrunk.vertices;
   const double largest_avatar_motion =
       (normalized.avatar.vertices - shrunk.vertices).rowwise().norm().maxCoeff();
-  problem_scene.avatar_faces_used = reachable_avatar_faces(
-      normalized.garment.vertices, shrunk.vertices, normalized.avatar.vertices,
-      normalized.avatar.faces, largest_avatar_motion + kFitBand + parameters.solver.dhat);
+  const double scope_margin = largest_avatar_motion + kFitBand + parameters.solver.dhat;
+  problem_scene.avatar_faces_used =
+      reachable_avatar_faces(normalized.garment.vertices, shrunk.vertices,
+                             normalized.avatar.vertices, normalized.avatar.faces, scope_margin);
   report.avatar_faces_modelled = static_cast<int>(problem_scene.avatar_faces_used.size());
   if (has_skeletons)
     problem_scene.skeletons = SkeletonMotion{normalized.source_skeleton->joints,
@@ -227,8 +229,26 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     const MatrixX3d avatar_now = shrunk.vertices + round.t * (normalized.avatar.vertices - shrunk.vertices);
     write_avatar((frames_dir / (name + "_avatar.obj")).string(), scene, frames, avatar_now);
   };
-  const InflationResult inflation =
-      inflate_avatar(problem_scene, parameters.solver, on_round, on_newton);
+  // A solve that carried the garment beyond the modelled avatar faces may have passed
+  // through one it did not see: it runs again with every face (rare, so the price is fine).
+  auto widen_scope_if_left = [&](const MatrixX3d& garment, const char* stage_name,
+                                 const char* what) {
+    if (problem_scene.avatar_faces_used.empty() ||
+        within_contact_scope(normalized.garment.vertices, garment, scope_margin,
+                             parameters.solver.dhat))
+      return false;
+    problem_scene.avatar_faces_used.clear();
+    report.avatar_faces_modelled = report.avatar_faces_total;
+    const std::string note = fmt::format(
+        "the {} carried the garment beyond the modelled avatar faces; solved again with all {}",
+        what, report.avatar_faces_total);
+    progress.log(stage_name, "{}", note);
+    report.warnings.push_back(note);
+    return true;
+  };
+  InflationResult inflation = inflate_avatar(problem_scene, parameters.solver, on_round, on_newton);
+  if (inflation.succeeded() && widen_scope_if_left(inflation.garment, "inflate", "inflation"))
+    inflation = inflate_avatar(problem_scene, parameters.solver, on_round, on_newton);
   report.al_rounds = inflation.rounds;
   report.al_resets = inflation.resets;
   report.inflate_newton_iterations = inflation.newton_iterations;
@@ -236,12 +256,17 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   report.seconds.inflate = stage.seconds();
   progress.log("inflate", "{} ({:.2f} s)", inflation.message, report.seconds.inflate);
   if (!inflation.succeeded())
-    return finish(RetargetStatus::kSolverFailure, "inflation failed: " + inflation.message);
+    return finish(RetargetStatus::kSolverFailure,
+                  "inflation failed: " + inflation.message +
+                      "; allow more work with --max-al-rounds and --max-newton-iterations, or "
+                      "widen the barrier with --dhat");
 
   // Fit.
   stage = StageTimer();
   solving = "fit";
-  const FitResult fit = fit_garment(problem_scene, inflation.garment, parameters.solver, on_newton);
+  FitResult fit = fit_garment(problem_scene, inflation.garment, parameters.solver, on_newton);
+  if (fit.solve.status != SolverStatus::kNonFiniteEnergy && widen_scope_if_left(fit.garment, "fit", "fit"))
+    fit = fit_garment(problem_scene, inflation.garment, parameters.solver, on_newton);
   report.fit_newton_iterations = fit.solve.iterations;
   report.fit_status = status_name(fit.solve.status);
   report.seconds.fit = stage.seconds();
@@ -249,9 +274,14 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                report.seconds.fit);
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy)
     return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
-  if (!fit.solve.converged())
-    report.warnings.push_back("fit stopped before its tolerance: " + fit.solve.message +
-                              " (the garment is still intersection free)");
+  // A fit stopped early is still intersection free (every step was CCD-bounded): the
+  // garment is written and certified, and the report says the fit is incomplete.
+  if (!fit.solve.converged()) {
+    const std::string warning = "fit stopped before its tolerance: " + fit.solve.message +
+                                "; allow more steps with --max-newton-iterations or loosen --eps-tol";
+    progress.log("warning", "{}", warning);
+    report.warnings.push_back(warning);
+  }
   {
     GarmentProblem final_problem(problem_scene, parameters.solver, GarmentProblem::Stage::kFit);
     const Eigen::VectorXd x = final_problem.layout().pack(1.0, fit.garment);
@@ -299,6 +329,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
       measure_distortion(normalized.garment.vertices, fit.garment, normalized.garment.faces);
 
   const auto totals = certificate.validation.result.totals();
+  // The solver sees only pairs within dhat; a garment that ended further away takes the
+  // certificate's clearance, so the report never holds an infinity.
+  if (!std::isfinite(report.min_distance))
+    report.min_distance = totals.smallest_avatar_clearance * report.scene_scale;
   const std::string summary = fmt::format(
       "{}: {} garment-avatar and {} self intersections; min distance {:.3g} (avatar units); fit "
       "error mean {:.3g}, p95 {:.3g}; {:.1f} s",

@@ -4,10 +4,12 @@
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
 #include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/extremes_support.hpp"
 
 namespace fs = std::filesystem;
 
@@ -40,6 +42,39 @@ const fs::path& bad_input_dir() {
     }
     write_text(dir / "skeleton_other_bones.obj", moved_bones);
     write_text(dir / "a_file", "not a folder\n");
+
+    // A small scene: a UV sphere avatar and flat patches (4×4 squares of 1/4) around it.
+    gr::test::write_mesh_obj(dir / "sphere.obj", gr::test::uv_sphere(16, 9));
+    const gr::TriangleMesh patch = gr::test::flat_patch(4, 0.25, 0.9375);
+    std::string quads;
+    for (Eigen::Index v = 0; v < patch.vertices.rows(); ++v)
+      quads += fmt::format("v {} {} {}\n", patch.vertices(v, 0), patch.vertices(v, 1), patch.vertices(v, 2));
+    // Squares as quads, except the last two of the first row, one hexagon whose fan from
+    // its first corner has no collinear triple.
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const int a = j * 5 + i + 1, b = a + 1, c = a + 5, d = c + 1;
+        if (j == 0 && i == 2) {
+          quads += fmt::format("f {} {} {} {} {} {}\n", b, b + 1, d + 1, d, c, a);
+          ++i;
+          continue;
+        }
+        quads += fmt::format("f {} {} {} {}\n", a, b, d, c);
+      }
+    write_text(dir / "quads.obj", quads);
+    // A patch through the sphere's centre: no erosion frees it.
+    gr::test::write_mesh_obj(dir / "through_centre.obj", gr::test::flat_patch(4, 0.75, 0.0));
+    // Two patches crossing each other above the sphere: the garment meets itself.
+    gr::TriangleMesh crossing = gr::test::flat_patch(2, 0.5, 1.5);
+    gr::TriangleMesh upright = crossing;
+    upright.vertices.col(2).swap(upright.vertices.col(0));
+    upright.vertices.col(0).array() -= 1.5;  // the plane x = 0, z from 1.125 to 2.125
+    upright.vertices.col(2).array() += 1.625;
+    crossing.vertices.conservativeResize(18, 3);
+    crossing.vertices.bottomRows(9) = upright.vertices;
+    crossing.faces.conservativeResize(16, 3);
+    crossing.faces.bottomRows(8) = upright.faces.array() + 9;
+    gr::test::write_mesh_obj(dir / "self_crossing.obj", crossing);
     return dir;
   }();
   return dir;
@@ -236,4 +271,56 @@ void check_bad_input(std::vector<std::string> case_args, int exit_code, const st
   TEST_CASE("bad input: output folder is a file", "[cli][errors]") {
     check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--out", "{D}/a_file/out"},
                     5, "cannot create output folder");
+  }
+
+  TEST_CASE("bad input: output folder under /proc cannot be created", "[cli][errors]") {
+    check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--out", "/proc/gr_no_such_folder/out"},
+                    5, "/proc/gr_no_such_folder/out: cannot create output folder");
+  }
+
+  TEST_CASE("bad input: garment that intersects itself", "[cli][errors]") {
+    check_bad_input({"--garment", "{D}/self_crossing.obj", "--avatar", "{D}/sphere.obj"},
+                    2, "self_crossing.obj: garment intersects itself (");
+  }
+
+  TEST_CASE("bad input: quads and n-gons are triangulated with a warning and the run proceeds",
+            "[cli][errors]") {
+    const fs::path dir = bad_input_dir();
+    const fs::path out = dir / "quads_out";
+    const gr::test::CliRun run = gr::test::run_cli(
+        {"retarget", "--garment", (dir / "quads.obj").string(), "--avatar", (dir / "sphere.obj").string(),
+         "--out", out.string(), "--quality", "fast", "--voxel-size", "0.05", "--eps-tol", "1e-2"},
+        "bad_input_quads");
+    CAPTURE(run.err, run.out);
+    CHECK(run.exit_code == gr::kExitSuccess);
+    CHECK_THAT(run.out, Catch::StartsWith("certified"));
+    int warnings = 0;
+    for (const auto& line : gr::test::lines_of(run.err))
+      if (line.find("warning") != std::string::npos) {
+        ++warnings;
+        CHECK_THAT(line, Catch::Contains("quads.obj") && Catch::Contains("15 polygons with more than 3 vertices triangulated"));
+      }
+    CHECK(warnings == 1);
+    CHECK(fs::exists(out / "garment.obj"));
+    CHECK(gr::read_obj((out / "garment.obj").string()).faces.size() == 32);
+  }
+
+  TEST_CASE("bad input: garment through the avatar's core, no shrink frees it", "[cli][errors]") {
+    const fs::path dir = bad_input_dir();
+    const fs::path out = dir / "no_shrink_out";
+    const gr::test::CliRun run = gr::test::run_cli(
+        {"retarget", "--garment", (dir / "through_centre.obj").string(), "--avatar",
+         (dir / "sphere.obj").string(), "--out", out.string(), "--quality", "fast", "--voxel-size",
+         "0.05", "--quiet"},
+        "bad_input_no_shrink");
+    CAPTURE(run.err, run.out);
+    CHECK(run.exit_code == gr::kExitNoValidShrink);
+    CHECK(run.err.empty());
+    const auto lines = gr::test::lines_of(run.out);
+    REQUIRE(lines.size() == 1);
+    CHECK_THAT(lines[0], Catch::StartsWith("no valid shrink: ") &&
+                             Catch::Contains("in the garment's frame"));
+    CHECK(fs::exists(out / "report.json"));
+    CHECK_FALSE(fs::exists(out / "garment.obj"));
+    CHECK_FALSE(fs::exists(out / "certificate.json"));
   }

@@ -1,0 +1,263 @@
+#pragma once
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "core/io/obj_document.hpp"
+#include "core/test_shapes.hpp"
+#include "test_support.hpp"
+#include "tools/pipeline/retarget.hpp"
+
+namespace gr::test {
+
+/// Writes a bare OBJ of a triangle mesh (positions and faces only).
+inline void write_mesh_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {
+  std::ofstream out(path);
+  out.precision(17);
+  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
+    out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2)
+        << '\n';
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' ' << mesh.faces(f, 2) + 1
+        << '\n';
+}
+
+/// The faces of `mesh` whose three corners satisfy `keep`, with unused vertices dropped.
+template <typename Keep>
+TriangleMesh submesh(const TriangleMesh& mesh, Keep keep) {
+  std::vector<int> remap(static_cast<std::size_t>(mesh.vertices.rows()), -1);
+  std::vector<Eigen::Vector3i> faces;
+  std::vector<Vector3d> vertices;
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
+    bool all = true;
+    for (int k = 0; k < 3; ++k) all = all && keep(Vector3d(mesh.vertices.row(mesh.faces(f, k))));
+    if (!all) continue;
+    Eigen::Vector3i face;
+    for (int k = 0; k < 3; ++k) {
+      int& id = remap[static_cast<std::size_t>(mesh.faces(f, k))];
+      if (id < 0) {
+        id = static_cast<int>(vertices.size());
+        vertices.emplace_back(mesh.vertices.row(mesh.faces(f, k)));
+      }
+      face[k] = id;
+    }
+    faces.push_back(face);
+  }
+  TriangleMesh out;
+  out.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    out.vertices.row(static_cast<Eigen::Index>(i)) = vertices[i].transpose();
+  out.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    out.faces.row(static_cast<Eigen::Index>(i)) = faces[i].transpose();
+  return out;
+}
+
+/// Every null in a JSON document outside the keys the report format documents as
+/// possibly null ("threshold" and "near_vertices" without --threshold): a NaN or an
+/// infinity written by nlohmann-json shows up as null.
+inline void collect_nulls(const nlohmann::json& json, const std::string& where,
+                          std::vector<std::string>& nulls) {
+  if (json.is_null()) {
+    nulls.push_back(where);
+  } else if (json.is_object()) {
+    for (const auto& [key, value] : json.items())
+      if (key != "threshold" && key != "near_vertices") collect_nulls(value, where + "/" + key, nulls);
+  } else if (json.is_array()) {
+    for (std::size_t i = 0; i < json.size(); ++i)
+      collect_nulls(json[i], where + "/" + std::to_string(i), nulls);
+  }
+}
+
+/// Checks that no NaN or infinity reached any file in `dir` (recursively): OBJ files
+/// parse (the reader rejects non-finite numbers) with finite positions and normals, JSON
+/// files have no unexpected null and no "nan"/"inf" text.
+inline void check_outputs_finite(const std::filesystem::path& dir) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string path = entry.path().string();
+    CAPTURE(path);
+    if (entry.path().extension() == ".obj") {
+      ObjDocument document;
+      REQUIRE_NOTHROW(document = read_obj(path));
+      CHECK(document.positions.allFinite());
+      CHECK(document.normals.allFinite());
+    } else if (entry.path().extension() == ".json") {
+      const std::string text = read_text(entry.path());
+      CHECK(text.find("nan") == std::string::npos);
+      CHECK(text.find("NaN") == std::string::npos);
+      CHECK(text.find("inf\"") == std::string::npos);
+      std::vector<std::string> nulls;
+      collect_nulls(nlohmann::json::parse(text), "", nulls);
+      CAPTURE(nulls);
+      CHECK(nulls.empty());
+    }
+  }
+}
+
+/// Options for a quiet, fast, two-thread run of the pipeline.
+inline RetargetOptions quiet_options(const std::string& garment, const std::string& avatar,
+                                     const std::filesystem::path& out) {
+  RetargetOptions options;
+  options.inputs.garment = garment;
+  options.inputs.avatar = avatar;
+  options.out_dir = out.string();
+  options.quality = "fast";
+  options.threads = 2;
+  options.quiet = true;
+  return options;
+}
+
+/// Signed-distance grid spacing for the synthetic scenes (normalized units).
+constexpr double kSyntheticVoxelSize = 0.05;
+/// Newton steps per solve for the synthetic scenes: open patches with free boundaries
+/// converge more slowly than the fast preset's 150 allow.
+constexpr int kSyntheticNewtonCap = 300;
+
+/// A regular octahedron |x| + |y| + |z| = 1: its box is exactly [-1, 1]³, so the
+/// normalization is the identity and edge midpoints such as (0.5, 0.5, 0) are exact.
+inline TriangleMesh octahedron() {
+  TriangleMesh mesh;
+  mesh.vertices.resize(6, 3);
+  mesh.vertices << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  mesh.faces.resize(8, 3);
+  mesh.faces << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  return mesh;
+}
+
+/// A UV sphere of radius 1 about the origin: poles on the z axis, `around` (a multiple
+/// of 4) vertices per ring, `rings` rings between the poles. Its box is exactly
+/// [-1, 1]³ (cos and sin are exact at quarter turns), so the normalization is the identity.
+inline TriangleMesh uv_sphere(int around, int rings) {
+  TriangleMesh mesh;
+  const int n = around * rings + 2;
+  mesh.vertices.resize(n, 3);
+  mesh.vertices.row(0) << 0.0, 0.0, 1.0;
+  mesh.vertices.row(n - 1) << 0.0, 0.0, -1.0;
+  for (int r = 0; r < rings; ++r) {
+    const double polar = M_PI * (r + 1) / (rings + 1);
+    for (int i = 0; i < around; ++i) {
+      const double azimuth = 2.0 * M_PI * i / around;
+      mesh.vertices.row(1 + r * around + i) << std::sin(polar) * std::cos(azimuth),
+          std::sin(polar) * std::sin(azimuth), std::cos(polar);
+    }
+  }
+  std::vector<Eigen::Vector3i> faces;
+  const auto ring = [&](int r, int i) { return 1 + r * around + (i % around); };
+  for (int i = 0; i < around; ++i) {
+    faces.emplace_back(0, ring(0, i), ring(0, i + 1));
+    faces.emplace_back(n - 1, ring(rings - 1, i + 1), ring(rings - 1, i));
+    for (int r = 0; r + 1 < rings; ++r) {
+      faces.emplace_back(ring(r, i), ring(r + 1, i), ring(r + 1, i + 1));
+      faces.emplace_back(ring(r, i), ring(r + 1, i + 1), ring(r, i + 1));
+    }
+  }
+  mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    mesh.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  return mesh;
+}
+
+/// An n×n grid of squares of side h in the plane z = height, centred on the z axis; each
+/// square split along its diagonal. With h and height dyadic every coordinate is exact.
+inline TriangleMesh flat_patch(int n, double h, double height) {
+  TriangleMesh mesh;
+  mesh.vertices.resize((n + 1) * (n + 1), 3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      mesh.vertices.row(j * (n + 1) + i) << (i - 0.5 * n) * h, (j - 0.5 * n) * h, height;
+  mesh.faces.resize(2 * n * n, 3);
+  int f = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      mesh.faces.row(f++) << a, b, d;
+      mesh.faces.row(f++) << a, d, c;
+    }
+  return mesh;
+}
+
+/// Splits face `face` (a, b, c) of `mesh` at a new vertex m = (a + b) / 2 + lift · (c − (a + b) / 2)
+/// into (a, m, c), (m, b, c) and the sliver (a, b, m) that keeps the edge ab shared with
+/// the neighbour: the sliver's aspect ratio is about |ab| / (lift · height of c), and with
+/// lift = 0 it is exactly collinear when the midpoint is exact.
+inline TriangleMesh with_sliver(const TriangleMesh& mesh, int face, double lift) {
+  TriangleMesh out = mesh;
+  const int a = mesh.faces(face, 0), b = mesh.faces(face, 1), c = mesh.faces(face, 2);
+  const Vector3d mid = 0.5 * (mesh.vertices.row(a) + mesh.vertices.row(b)).transpose();
+  const Vector3d m = mid + lift * (Vector3d(mesh.vertices.row(c).transpose()) - mid);
+  const int id = static_cast<int>(mesh.vertices.rows());
+  out.vertices.conservativeResize(id + 1, 3);
+  out.vertices.row(id) = m.transpose();
+  out.faces.conservativeResize(mesh.faces.rows() + 2, 3);
+  out.faces.row(face) << a, id, c;
+  out.faces.row(mesh.faces.rows()) << id, b, c;
+  out.faces.row(mesh.faces.rows() + 1) << a, b, id;
+  return out;
+}
+
+/// The avatar of the synthetic extremes: a unit icosphere (320 faces) at the origin.
+inline TriangleMesh sphere_avatar() { return icosphere(2, 1.0); }
+
+/// A cap (z > 0.2) of the avatar blown up about its centre so that every cap vertex lies
+/// `gap` (relative to the radius 1) from the avatar: the avatar is convex and the cap has
+/// its connectivity, so the faces stay outside too, parallel to the avatar's.
+inline TriangleMesh cap_at_gap(double gap) {
+  TriangleMesh cap = submesh(sphere_avatar(), [](const Vector3d& p) { return p.z() > 0.2; });
+  cap.vertices *= 1.0 + gap;
+  return cap;
+}
+
+/// A cap (z > 0.1) of a coarser sphere of radius 0.93 inside the avatar, turned so no
+/// vertex lines up with the avatar's: the shrink must erode the avatar below it and the
+/// inflation push the cap out.
+inline TriangleMesh cap_inside() {
+  TriangleMesh sphere = icosphere(2, 0.93);
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.3, Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  sphere.vertices = (sphere.vertices * turn.transpose()).eval();
+  return submesh(sphere, [](const Vector3d& p) { return p.z() > 0.1; });
+}
+
+/// Writes the sphere avatar and `garment` as OBJ files in a fresh folder; returns
+/// quiet fast options for them with the output in `<folder>/out`.
+inline RetargetOptions synthetic_scene(const std::string& name, const TriangleMesh& garment,
+                                       const TriangleMesh& avatar = sphere_avatar()) {
+  const std::filesystem::path dir = fresh_temp_dir("extremes_" + name);
+  write_mesh_obj(dir / "garment.obj", garment);
+  write_mesh_obj(dir / "avatar.obj", avatar);
+  RetargetOptions options =
+      quiet_options((dir / "garment.obj").string(), (dir / "avatar.obj").string(), dir / "out");
+  // The spheres are smooth at this resolution; a finer grid only costs time.
+  options.overrides.voxel_size = kSyntheticVoxelSize;
+  options.overrides.max_newton_iterations = kSyntheticNewtonCap;
+  return options;
+}
+
+/// Runs the pipeline and checks the outcome is either certified or a clean, named
+/// failure: a status, a one-line message, a report, no garment, and nothing non-finite.
+inline RetargetResult run_and_check(const RetargetOptions& options) {
+  const RetargetResult result = run_retarget(options);
+  INFO(result.message);
+  CHECK(result.message.find('\n') == std::string::npos);
+  CHECK(std::filesystem::exists(result.report_path));
+  if (result.status == RetargetStatus::kCertified) {
+    CHECK(std::filesystem::exists(result.garment_path));
+    CHECK(std::filesystem::exists(std::filesystem::path(options.out_dir) / "certificate.json"));
+  } else {
+    CHECK_FALSE(result.message.empty());
+    CHECK_FALSE(std::filesystem::exists(std::filesystem::path(options.out_dir) / "garment.obj"));
+  }
+  check_outputs_finite(options.out_dir);
+  return result;
+}
+
+}  // namespace gr::test
