@@ -82,11 +82,12 @@ std::string markdown_table(const std::vector<Run>& runs) {
     const auto& r = run.result.report;
     md += fmt::format(
         "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {}/{} | {} | {:.0f} | {:.3g} / "
-        "{:.3g} | {:.2%} / {:.2%} | {:.3g} |\n",
+        "{:.3g} | {:.2f}% / {:.2f}% | {:.3g} |\n",
         run.scene, run.config, r.certified ? "yes" : "**no**", r.seconds.shrink, r.seconds.inflate,
         r.seconds.fit, r.seconds.certify, r.seconds.total, r.inflate_newton_iterations,
         r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95,
-        r.distortion.mean_edge_change, r.distortion.max_edge_change, r.min_distance / r.scene_scale);
+        100.0 * r.distortion.mean_edge_change, 100.0 * r.distortion.max_edge_change,
+        r.min_distance / r.scene_scale);
   }
   md += "\nFit error and clearance in each avatar's file units; times are wall seconds on this "
         "machine.\n";
