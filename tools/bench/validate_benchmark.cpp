@@ -15,6 +15,7 @@
 #include <tbb/global_control.h>
 
 #include "core/io/atomic_file.hpp"
+#include "core/mesh/primitives.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/scene.hpp"
 #include "validate/certify/certificate.hpp"
@@ -68,30 +69,7 @@ void write_mesh(const std::string& path, const gr::TriangleMesh& mesh) {
 /// A latitude–longitude sphere: `m` segments around, `n` bands from pole to pole
 /// (2·m·(n−1) faces).
 gr::TriangleMesh sphere(double radius, int m, int n) {
-  gr::TriangleMesh s;
-  s.vertices.resize(2 + m * (n - 1), 3);
-  s.vertices.row(0) << 0, 0, radius;
-  s.vertices.row(1) << 0, 0, -radius;
-  const double pi = 3.14159265358979323846;
-  auto ring = [&](int i, int j) { return 2 + (i - 1) * m + (j % m); };
-  for (int i = 1; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double theta = pi * i / n, phi = 2 * pi * j / m;
-      s.vertices.row(ring(i, j)) << radius * std::sin(theta) * std::cos(phi),
-          radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta);
-    }
-  std::vector<Eigen::RowVector3i> faces;
-  for (int j = 0; j < m; ++j) {
-    faces.emplace_back(0, ring(1, j), ring(1, j + 1));
-    faces.emplace_back(1, ring(n - 1, j + 1), ring(n - 1, j));
-    for (int i = 1; i + 1 < n; ++i) {
-      faces.emplace_back(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
-      faces.emplace_back(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-    }
-  }
-  s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f];
-  return s;
+  return gr::uv_sphere(radius, gr::Vector3d::Zero(), n, m);
 }
 
 double peak_rss_mib() {
