@@ -68,6 +68,16 @@ Eigen::Matrix3d axis_alignment(const MatrixX3d& source, const MatrixX3d& target)
   return chosen;
 }
 
+/// `similarity` applied to each row, rounded to multiples of `lattice` (0: not rounded).
+/// The spacing is a power of two, so the division and product are exact and only the
+/// rounding moves a coordinate.
+MatrixX3d to_lattice(const Similarity& similarity, const Eigen::Ref<const MatrixX3d>& points,
+                     double lattice) {
+  MatrixX3d mapped = similarity.apply_rows(points);
+  if (lattice > 0.0) mapped = (mapped / lattice).array().round() * lattice;
+  return mapped;
+}
+
 }  // namespace
 
 Normalization normalize_scene(const Scene& scene) {
@@ -92,17 +102,25 @@ Normalization normalize_scene(const Scene& scene) {
   return n;
 }
 
-NormalizedScene make_normalized_scene(const Scene& scene) {
+double lattice_spacing(double dhat) {
+  constexpr int kStepsPerDhatLog2 = 11;
+  return std::ldexp(1.0, std::ilogb(dhat) - kStepsPerDhatLog2);
+}
+
+NormalizedScene make_normalized_scene(const Scene& scene, double lattice) {
   NormalizedScene out;
   out.normalization = normalize_scene(scene);
+  out.lattice = lattice;
   const Similarity& garment_frame = out.normalization.garment_to_scene;
   const Similarity& avatar_frame = out.normalization.avatar_to_scene;
-  out.garment = {garment_frame.apply_rows(scene.garment.mesh.vertices), scene.garment.mesh.faces};
-  out.avatar = {avatar_frame.apply_rows(scene.avatar.mesh.vertices), scene.avatar.mesh.faces};
+  out.garment = {to_lattice(garment_frame, scene.garment.mesh.vertices, lattice),
+                 scene.garment.mesh.faces};
+  out.avatar = {to_lattice(avatar_frame, scene.avatar.mesh.vertices, lattice),
+                scene.avatar.mesh.faces};
   if (scene.source_skeleton && scene.target_skeleton) {
-    out.source_skeleton = Skeleton{garment_frame.apply_rows(scene.source_skeleton->joints),
+    out.source_skeleton = Skeleton{to_lattice(garment_frame, scene.source_skeleton->joints, lattice),
                                    scene.source_skeleton->bones};
-    out.target_skeleton = Skeleton{avatar_frame.apply_rows(scene.target_skeleton->joints),
+    out.target_skeleton = Skeleton{to_lattice(avatar_frame, scene.target_skeleton->joints, lattice),
                                    scene.target_skeleton->bones};
   }
   return out;

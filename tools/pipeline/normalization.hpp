@@ -29,6 +29,18 @@ struct Normalization {
 
 constexpr double kNormalizedHeight = 2.0;
 
+/// Spacing of the lattice that normalized coordinates are rounded to for a barrier support
+/// `dhat` (normalized units): the largest power of two at most dhat / 2048, so 2^-20 (under
+/// 5e-7 of the scene's size) at the default dhat.
+/// Why: the fit is a non-convex minimization (cloth pressed onto a body has many nearly
+/// equal folded states), so rounding-level differences in its input grow into visibly
+/// different folds. On the lattice, a rescaled, moved or re-exported copy of an asset gives
+/// the solver bit-identical input, hence the same garment, unless a coordinate lies within
+/// rounding of a lattice midpoint. The spacing stays far below the gaps the barrier keeps
+/// (a fraction of dhat), so the solver's avatar and the certified one differ by much less
+/// than the final clearance.
+double lattice_spacing(double dhat);
+
 /// With skeletons: the source skeleton's largest bounding-box side becomes 2 and its box
 /// centre the origin; the target skeleton is scaled to the same size, centred on it, and
 /// turned by the signed axis permutation that best aligns its joints with the source's
@@ -40,13 +52,15 @@ Normalization normalize_scene(const Scene& scene);
 /// A scene's meshes and skeletons in normalized scene units.
 struct NormalizedScene {
   Normalization normalization;
+  double lattice = 0.0;                    ///< coordinates are multiples of this (0: not rounded)
   TriangleMesh garment;                    ///< welded garment, #Vg×3 / #Fg×3
   TriangleMesh avatar;                     ///< welded avatar, #Va×3 / #Fa×3
   std::optional<Skeleton> source_skeleton;  ///< in the garment's normalized frame
   std::optional<Skeleton> target_skeleton;  ///< in the avatar's normalized frame
 };
 
-/// normalize_scene, then every mesh and skeleton mapped into the normalized frame.
-NormalizedScene make_normalized_scene(const Scene& scene);
+/// normalize_scene, then every mesh and skeleton mapped into the normalized frame and
+/// rounded to multiples of `lattice` (a power of two; 0 keeps the mapped coordinates).
+NormalizedScene make_normalized_scene(const Scene& scene, double lattice = 0.0);
 
 }  // namespace gr

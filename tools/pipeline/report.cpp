@@ -26,6 +26,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"fit_samples_per_face", p.solver.fit_samples_per_face},
         {"ccd_min_separation_ratio", p.solver.ccd.min_separation_ratio},
         {"self_contact", p.solver.self_contact},
+        {"lattice", r.lattice},
         {"units", "normalized scene units (avatar about 2 tall)"}}},
       {"seconds",
        {{"read", r.seconds.read},

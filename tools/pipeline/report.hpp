@@ -37,6 +37,7 @@ struct RetargetReport {
 
   double min_distance = 0.0;      ///< garment–avatar and garment–garment, normalized units (solver's view, pairs within dhat; else the certified garment–avatar clearance)
   double scene_scale = 1.0;       ///< normalized units per avatar file unit
+  double lattice = 0.0;           ///< normalized coordinates are multiples of this (0: exact)
   FitError fit_error;             ///< avatar file units
   Distortion distortion;
   double surface_energy_per_area = 0.0;

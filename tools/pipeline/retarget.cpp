@@ -38,6 +38,10 @@ constexpr double kFitBand = 0.1;
 /// Newton progress lines: the first steps, then every tenth.
 constexpr int kNewtonLogEvery = 10;
 
+bool garment_intersects_itself(const TriangleMesh& garment) {
+  return find_self_intersecting_face_pairs(garment, 1).pairs.count > 0;
+}
+
 /// Rejects a garment that crosses itself as given: no solver output could be certified.
 void require_garment_free_of_itself(const Scene& scene, const TriangleMesh& garment) {
   const SelfIntersections self = find_self_intersecting_face_pairs(garment, 1);
@@ -120,10 +124,15 @@ RetargetResult run_retarget(const RetargetOptions& options) {
 
   // Normalize.
   stage = StageTimer();
-  const NormalizedScene normalized = make_normalized_scene(scene);
+  NormalizedScene normalized =
+      make_normalized_scene(scene, lattice_spacing(parameters.solver.dhat));
+  // Rounding to the lattice can fold a sliver or close a hairline gap: keep the exact
+  // coordinates then, and refuse the garment only if it crosses itself as given.
+  if (garment_intersects_itself(normalized.garment)) normalized = make_normalized_scene(scene);
+  require_garment_free_of_itself(scene, normalized.garment);
   const Normalization& frames = normalized.normalization;
   report.scene_scale = frames.avatar_to_scene.scale;
-  require_garment_free_of_itself(scene, normalized.garment);
+  report.lattice = normalized.lattice;
   // Progress starts once the inputs are known good, so bad input prints its error alone.
   progress.log("read", "{} on {}", options.inputs.garment, options.inputs.avatar);
   for (const auto& warning : scene.warnings) {
