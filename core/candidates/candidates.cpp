@@ -9,6 +9,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/broad_phase/bvh.hpp"
+#include "core/broad_phase/pair_separation.hpp"
 
 namespace gr {
 namespace {
@@ -59,6 +60,27 @@ std::vector<Box> point_boxes(const std::vector<Box>& vertex_boxes, int first, in
   return boxes;
 }
 
+/// How far (normalized units) a static query's vertex may lie off its segment of the last
+/// swept motion and still count as on it: line-search points x + alpha dx differ from the
+/// exact segment by rounding only, far below this.
+constexpr double kOnMotionTolerance = 1e-10;
+
+std::array<Vector3d, 4> gather(const Eigen::Ref<const MatrixX3d>& V, const std::array<int, 4>& ids) {
+  return {V.row(ids[0]).transpose(), V.row(ids[1]).transpose(), V.row(ids[2]).transpose(),
+          V.row(ids[3]).transpose()};
+}
+
+/// Whether the pair (vertices `ids`, split as in pair_separation_lower_bound) may come
+/// within `threshold` somewhere along V0 → V1 (V0 and V1 the same matrix: at V0).
+bool may_come_within(const Eigen::Ref<const MatrixX3d>& V0, const Eigen::Ref<const MatrixX3d>& V1,
+                     const std::array<int, 4>& ids, int split, double threshold) {
+  const std::array<Vector3d, 4> x0 = gather(V0, ids);
+  const double bound = V0.data() == V1.data()
+                           ? pair_separation_lower_bound(x0, split, threshold)
+                           : pair_separation_lower_bound(x0, gather(V1, ids), split, threshold);
+  return bound < threshold;
+}
+
 bool same_boxes(const std::vector<Box>& a, const std::vector<Box>& b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Box& x, const Box& y) {
            return x.min() == y.min() && x.max() == y.max();
@@ -87,7 +109,9 @@ void CandidateFinder::check_positions(const Eigen::Ref<const MatrixX3d>& V) cons
                                 " vertices");
 }
 
-Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, double radius) {
+Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, double radius,
+                                      const Eigen::Ref<const MatrixX3d>& V0,
+                                      const Eigen::Ref<const MatrixX3d>& V1, double threshold) {
   const double grow = 0.5 * radius;
   const int ng = mesh_.garment_vertex_count;
   AvatarTrees& avatar = *avatar_trees_;
@@ -118,34 +142,47 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
   const bool self_contact = mesh_.self_contact;
   using PT = PointTriangleCandidate;
   using EE = EdgeEdgeCandidate;
+  // Box overlap is a loose test for pairs of neighbours in one mesh and for tilted layers;
+  // pairs whose separation bound already rules them out are not emitted.
+  const auto keep_pt = [&](int v, const std::array<int, 3>& t) {
+    return may_come_within(V0, V1, {v, t[0], t[1], t[2]}, 1, threshold);
+  };
+  const auto keep_ee = [&](const std::array<int, 2>& a, const std::array<int, 2>& b) {
+    return may_come_within(V0, V1, {a[0], a[1], b[0], b[1]}, 2, threshold);
+  };
   Candidates out;
   std::vector<PT> garment_avatar, self_pt, avatar_garment;
   std::vector<EE> edges_ga, self_ee;
   tbb::parallel_invoke(
       [&] {
-        garment_avatar = garment_points.collect_pairs<PT>(
-            avatar.faces, [&](int v, int f, std::vector<PT>& sink) { sink.push_back({v, face(af, f)}); });
-      },
-      [&] {
-        avatar_garment = avatar.points.collect_pairs<PT>(garment_faces, [&](int i, int f, std::vector<PT>& sink) {
-          sink.push_back({avatar_points_[static_cast<std::size_t>(i)], face(gf, f)});
+        garment_avatar = garment_points.collect_pairs<PT>(avatar.faces, [&](int v, int f, std::vector<PT>& sink) {
+          if (keep_pt(v, face(af, f))) sink.push_back({v, face(af, f)});
         });
       },
       [&] {
-        edges_ga = garment_edges.collect_pairs<EE>(
-            avatar.edges, [&](int a, int b, std::vector<EE>& sink) { sink.push_back({edge(ge, a), edge(ae, b)}); });
+        avatar_garment = avatar.points.collect_pairs<PT>(garment_faces, [&](int i, int f, std::vector<PT>& sink) {
+          const int v = avatar_points_[static_cast<std::size_t>(i)];
+          if (keep_pt(v, face(gf, f))) sink.push_back({v, face(gf, f)});
+        });
+      },
+      [&] {
+        edges_ga = garment_edges.collect_pairs<EE>(avatar.edges, [&](int a, int b, std::vector<EE>& sink) {
+          if (keep_ee(edge(ge, a), edge(ae, b))) sink.push_back({edge(ge, a), edge(ae, b)});
+        });
       },
       [&] {
         if (!self_contact) return;
         self_pt = garment_points.collect_pairs<PT>(garment_faces, [&](int v, int f, std::vector<PT>& sink) {
-          if (gf(f, 0) != v && gf(f, 1) != v && gf(f, 2) != v) sink.push_back({v, face(gf, f)});
+          if (gf(f, 0) != v && gf(f, 1) != v && gf(f, 2) != v && keep_pt(v, face(gf, f)))
+            sink.push_back({v, face(gf, f)});
         });
       },
       [&] {
         if (!self_contact) return;
         self_ee = garment_edges.collect_pairs<EE>(garment_edges, [&](int a, int b, std::vector<EE>& sink) {
           const int a0 = ge(a, 0), a1 = ge(a, 1), b0 = ge(b, 0), b1 = ge(b, 1);
-          if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1) sink.push_back({{a0, a1}, {b0, b1}});
+          if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && keep_ee({a0, a1}, {b0, b1}))
+            sink.push_back({{a0, a1}, {b0, b1}});
         });
       });
   out.point_triangle = std::move(garment_avatar);
@@ -163,9 +200,8 @@ Candidates CandidateFinder::find(const Eigen::Ref<const MatrixX3d>& V, double in
     const Vector3d p = V.row(i).transpose();
     vertex_boxes[static_cast<std::size_t>(i)] = Box(p, p);
   }
-  if (inflation_radius <= swept_radius_ && inside_swept_boxes(vertex_boxes))
-    return filter_swept(vertex_boxes, inflation_radius);
-  return box_pairs(vertex_boxes, inflation_radius);
+  if (inflation_radius <= swept_radius_ && on_swept_motion(V)) return filter_swept(V, inflation_radius);
+  return box_pairs(vertex_boxes, inflation_radius, V, V, inflation_radius);
 }
 
 Candidates CandidateFinder::find_swept(const Eigen::Ref<const MatrixX3d>& V0,
@@ -175,41 +211,45 @@ Candidates CandidateFinder::find_swept(const Eigen::Ref<const MatrixX3d>& V0,
   std::vector<Box> vertex_boxes(static_cast<std::size_t>(V0.rows()));
   for (Eigen::Index i = 0; i < V0.rows(); ++i) {
     const Vector3d p = V0.row(i).transpose(), q = V1.row(i).transpose();
-    vertex_boxes[static_cast<std::size_t>(i)] = Box(p.cwiseMin(q), p.cwiseMax(q));
+    // Grown by the tolerance of on_swept_motion, so that the list also serves static
+    // queries that lie on the motion only up to rounding.
+    vertex_boxes[static_cast<std::size_t>(i)] =
+        Box(p.cwiseMin(q).array() - kOnMotionTolerance, p.cwiseMax(q).array() + kOnMotionTolerance);
   }
-  swept_ = box_pairs(vertex_boxes, inflation_radius);
-  swept_boxes_ = std::move(vertex_boxes);
+  // A static query on this motion may be off it by rounding (kOnMotionTolerance per
+  // vertex), which can shrink a pair's gap by twice that: keep pairs that come that close.
+  swept_ = box_pairs(vertex_boxes, inflation_radius, V0, V1, inflation_radius + 2.0 * kOnMotionTolerance);
+  swept_start_ = V0;
+  swept_end_ = V1;
   swept_radius_ = inflation_radius;
   return swept_;
 }
 
-bool CandidateFinder::inside_swept_boxes(const std::vector<Box>& vertex_boxes) const {
-  if (swept_boxes_.size() != vertex_boxes.size()) return false;
-  for (std::size_t i = 0; i < vertex_boxes.size(); ++i)
-    if (!swept_boxes_[i].contains(vertex_boxes[i])) return false;
+bool CandidateFinder::on_swept_motion(const Eigen::Ref<const MatrixX3d>& V) const {
+  if (swept_start_.rows() != V.rows()) return false;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Vector3d a = swept_start_.row(i).transpose(), d = swept_end_.row(i).transpose() - a;
+    const Vector3d p = V.row(i).transpose() - a;
+    const double length_sq = d.squaredNorm();
+    const double s = length_sq > 0.0 ? std::clamp(p.dot(d) / length_sq, 0.0, 1.0) : 0.0;
+    if ((p - s * d).squaredNorm() > kOnMotionTolerance * kOnMotionTolerance) return false;
+  }
   return true;
 }
 
-Candidates CandidateFinder::filter_swept(const std::vector<Box>& vertex_boxes, double radius) const {
-  // The same test as the tree search, on exact boxes: the pair's two element boxes, each
-  // grown by radius / 2, overlap.
-  const auto box_of = [&](const int* ids, int count) {
-    Box box = vertex_boxes[static_cast<std::size_t>(ids[0])];
-    for (int k = 1; k < count; ++k) box.extend(vertex_boxes[static_cast<std::size_t>(ids[k])]);
-    box.min().array() -= 0.5 * radius;
-    box.max().array() += 0.5 * radius;
-    return box;
-  };
+Candidates CandidateFinder::filter_swept(const Eigen::Ref<const MatrixX3d>& V, double radius) const {
+  // Every pair that may be within the radius at V is in the swept list (V is on the swept
+  // motion): keep those whose separation bound at V does not rule them out.
   const std::size_t npt = swept_.point_triangle.size();
   std::vector<char> keep(swept_.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keep.size(), 1024), [&](const auto& range) {
     for (std::size_t k = range.begin(); k != range.end(); ++k) {
       if (k < npt) {
         const PointTriangleCandidate& c = swept_.point_triangle[k];
-        keep[k] = box_of(&c.point, 1).intersects(box_of(c.triangle.data(), 3));
+        keep[k] = may_come_within(V, V, {c.point, c.triangle[0], c.triangle[1], c.triangle[2]}, 1, radius);
       } else {
         const EdgeEdgeCandidate& c = swept_.edge_edge[k - npt];
-        keep[k] = box_of(c.edge_a.data(), 2).intersects(box_of(c.edge_b.data(), 2));
+        keep[k] = may_come_within(V, V, {c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]}, 2, radius);
       }
     }
   });

@@ -36,11 +36,13 @@ struct Candidates {
 /// mesh over many calls, keeping what stays valid between them:
 /// - the avatar's trees are reused while the avatar's vertex boxes and the radius are
 ///   unchanged (in the fit the avatar does not move);
-/// - a static query whose vertices all lie in the vertex boxes of the last swept query
-///   (at no larger radius) filters that query's pairs instead of searching again: a pair
-///   close at such a point has its boxes inside the swept ones, so the swept list holds
-///   it. An accepted line-search point lies on the swept motion, so each Newton step
-///   searches the trees once.
+/// - a static query whose vertices all lie on the last swept query's motion (each on its
+///   segment, up to rounding; at no larger radius) filters that query's pairs instead of
+///   searching again: a pair close at such a point is close somewhere along the motion, so
+///   the swept list holds it. An accepted line-search point lies on the swept motion, so
+///   each Newton step searches the trees once.
+/// - pairs whose boxes overlap but whose separation bound (pair_separation.hpp) rules them
+///   out are dropped before they reach the narrow phase.
 /// The lists keep the order of the search they come from, the same on any thread count.
 /// Not safe for concurrent use.
 class CandidateFinder {
@@ -62,20 +64,26 @@ class CandidateFinder {
   using Box = Eigen::AlignedBox3d;
 
   void check_positions(const Eigen::Ref<const MatrixX3d>& V) const;
-  Candidates box_pairs(const std::vector<Box>& vertex_boxes, double radius);
-  bool inside_swept_boxes(const std::vector<Box>& vertex_boxes) const;
-  Candidates filter_swept(const std::vector<Box>& vertex_boxes, double radius) const;
+  /// Pairs whose element boxes (vertex boxes grown by radius / 2) overlap and whose
+  /// separation bound over V0 → V1 is below `threshold`.
+  Candidates box_pairs(const std::vector<Box>& vertex_boxes, double radius,
+                       const Eigen::Ref<const MatrixX3d>& V0, const Eigen::Ref<const MatrixX3d>& V1,
+                       double threshold);
+  /// Whether every vertex of V lies on its segment of the last swept motion.
+  bool on_swept_motion(const Eigen::Ref<const MatrixX3d>& V) const;
+  Candidates filter_swept(const Eigen::Ref<const MatrixX3d>& V, double radius) const;
 
   ContactMesh mesh_;
   std::vector<int> avatar_points_;  ///< avatar vertices that some contact face uses
   std::unique_ptr<AvatarTrees> avatar_trees_;
   Candidates swept_;                ///< the last swept query's pairs
-  std::vector<Box> swept_boxes_;    ///< and its vertex boxes
+  MatrixX3d swept_start_, swept_end_;  ///< and its motion
   double swept_radius_ = -1.0;
 };
 
 /// Every pair whose distance at `V` may be below `inflation_radius` (a superset: pairs
-/// whose bounding boxes come within the radius). Built from bounding volume hierarchies
+/// whose bounding boxes come within the radius and whose separation bound,
+/// core/broad_phase/pair_separation.hpp, is below it). Built from bounding volume hierarchies
 /// rebuilt on every call (core/broad_phase/bvh.hpp); the order of the lists is fixed by
 /// the geometry, the same on any thread count.
 /// @param V stacked positions, #(garment+avatar)×3, in normalized scene units.
@@ -85,7 +93,8 @@ Candidates find_candidates(const ContactMesh& mesh, const Eigen::Ref<const Matri
 
 /// Every pair whose swept volumes along the linear motion V0 → V1 come within
 /// `inflation_radius` of each other (a superset of the pairs that CCD must check): each
-/// vertex's box spans its start and end positions.
+/// vertex's box spans its start and end positions, and the separation bound over the
+/// motion is below the radius.
 /// @throw std::invalid_argument when V0 or V1 has the wrong row count.
 Candidates find_swept_candidates(const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& V0,
                                  const Eigen::Ref<const MatrixX3d>& V1, double inflation_radius);

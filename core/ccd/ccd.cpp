@@ -7,23 +7,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "core/broad_phase/pair_separation.hpp"
 #include "core/ccd/additive_ccd.hpp"
 
 namespace gr {
 namespace {
-
-/// Euclidean gap between the boxes swept by two vertex groups (0 when they overlap).
-double swept_box_gap(const std::array<Vector3d, 4>& x0, const std::array<Vector3d, 4>& x1,
-                     int first_of_second) {
-  Eigen::AlignedBox3d a, b;
-  for (int i = 0; i < 4; ++i) {
-    Eigen::AlignedBox3d& box = i < first_of_second ? a : b;
-    box.extend(x0[i]);
-    box.extend(x1[i]);
-  }
-  const Vector3d gap = (a.min() - b.max()).cwiseMax(b.min() - a.max()).cwiseMax(0.0);
-  return gap.norm();
-}
 
 /// Step bound for candidate k (point–triangle first, then edge–edge), at most t_max.
 double pair_step(const Candidates& candidates, std::size_t k, const Eigen::Ref<const MatrixX3d>& V0,
@@ -42,13 +30,13 @@ double pair_step(const Candidates& candidates, std::size_t k, const Eigen::Ref<c
     x0[i] = V0.row(ids[i]).transpose();
     x1[i] = V1.row(ids[i]).transpose();
   }
-  // Swept boxes further apart than the absolute separation and than the starting
-  // distance's separation cannot come that close: no narrow phase needed.
-  const double gap = swept_box_gap(x0, x1, edge_edge ? 2 : 1);
-  if (gap > options.min_separation && gap > 0.0) {
-    const double d0_upper = (x0[0] - x0[edge_edge ? 2 : 1]).norm();  // any point pair bounds d0
-    if (gap >= options.min_separation_ratio * d0_upper) return t_max;
-  }
+  // Primitives whose swept hulls stay further apart than the absolute separation and than
+  // the starting distance's separation cannot come that close: no narrow phase needed.
+  const double d0_upper = (x0[0] - x0[edge_edge ? 2 : 1]).norm();  // any point pair bounds d0
+  const double needed = std::max(options.min_separation, options.min_separation_ratio * d0_upper);
+  const double gap = pair_separation_lower_bound(x0, x1, edge_edge ? 2 : 1, needed);
+  if (gap > options.min_separation && gap > 0.0 && gap >= options.min_separation_ratio * d0_upper)
+    return t_max;
   return edge_edge ? edge_edge_ccd(x0, x1, options, t_max) : point_triangle_ccd(x0, x1, options, t_max);
 }
 

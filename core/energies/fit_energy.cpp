@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/parallel_for.h>
+
 namespace gr {
 
 TriangleQuadrature TriangleQuadrature::with_points(int count) {
@@ -57,25 +59,50 @@ FitEnergy::FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit,
   assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
 }
 
-double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, LocalVector* g,
-                          LocalMatrix* h, bool project_psd) const {
+Vector3d FitEnergy::point(int face, std::size_t q, const Eigen::Ref<const MatrixX3d>& V) const {
   const auto& f = faces_[static_cast<std::size_t>(face)];
+  const Vector3d& b = quadrature_.barycentric[q];
+  return b[0] * V.row(f[0]).transpose() + b[1] * V.row(f[1]).transpose() + b[2] * V.row(f[2]).transpose();
+}
+
+bool FitEnergy::has_samples_at(const Eigen::Ref<const MatrixX3d>& V) const {
+  return sampled_positions_.rows() == V.rows() && sampled_positions_ == V;
+}
+
+const std::vector<FitEnergy::Sample>& FitEnergy::samples_at(const Eigen::Ref<const MatrixX3d>& V) const {
+  if (has_samples_at(V)) return samples_;
+  const std::size_t per_face = quadrature_.weights.size();
+  samples_.resize(faces_.size() * per_face);
+  tbb::parallel_for(0, fit_face_count(), [&](int face) {
+    for (std::size_t q = 0; q < per_face; ++q) {
+      Sample& s = samples_[static_cast<std::size_t>(face) * per_face + q];
+      s.phi = field_->evaluate(point(face, q, V), &s.gradient, &s.hessian);
+    }
+  });
+  sampled_positions_ = V;
+  return samples_;
+}
+
+double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, const Sample* samples,
+                          LocalVector* g, LocalMatrix* h, bool project_psd) const {
   const double area = rest_areas_[static_cast<std::size_t>(face)];
   double value = 0.0;
   for (std::size_t q = 0; q < quadrature_.weights.size(); ++q) {
     const Vector3d& b = quadrature_.barycentric[q];
-    const Vector3d p = b[0] * V.row(f[0]).transpose() + b[1] * V.row(f[1]).transpose() +
-                       b[2] * V.row(f[2]).transpose();
-    Vector3d grad_phi;
-    Eigen::Matrix3d hess_phi;
-    const double phi = field_->evaluate(p, g || h ? &grad_phi : nullptr, h ? &hess_phi : nullptr);
+    Sample fresh;
+    if (!samples)
+      fresh.phi = field_->evaluate(point(face, q, V), g || h ? &fresh.gradient : nullptr,
+                                   h ? &fresh.hessian : nullptr);
+    const Sample& sample = samples ? samples[q] : fresh;
+    const double phi = sample.phi;
     if (phi <= 0.0) continue;
+    const Vector3d& grad_phi = sample.gradient;
     const double w = area * quadrature_.weights[q];
     value += w * phi * phi;
     if (g)
       for (int v = 0; v < 3; ++v) g->segment<3>(3 * v) += 2.0 * w * phi * b[v] * grad_phi;
     if (h) {
-      Eigen::Matrix3d point_hessian = 2.0 * w * (grad_phi * grad_phi.transpose() + phi * hess_phi);
+      Eigen::Matrix3d point_hessian = 2.0 * w * (grad_phi * grad_phi.transpose() + phi * sample.hessian);
       if (project_psd) point_hessian = project_to_psd(point_hessian);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) h->block<3, 3>(3 * i, 3 * j) += b[i] * b[j] * point_hessian;
@@ -85,19 +112,35 @@ double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, LocalV
 }
 
 double FitEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
-  return assembly_.value([&](int f) { return element(f, V, nullptr, nullptr, false); });
+  // Line-search points are new each time: sampled for the value alone, not kept.
+  const Sample* samples = has_samples_at(V) ? samples_.data() : nullptr;
+  const std::size_t per_face = quadrature_.weights.size();
+  return assembly_.value([&](int f) {
+    return element(f, V, samples ? samples + static_cast<std::size_t>(f) * per_face : nullptr,
+                   nullptr, nullptr, false);
+  });
 }
 
 double FitEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const {
-  return assembly_.gradient([&](int f, LocalVector& g) { return element(f, V, &g, nullptr, false); },
-                            gradient);
+  const Sample* samples = samples_at(V).data();
+  const std::size_t per_face = quadrature_.weights.size();
+  return assembly_.gradient(
+      [&](int f, LocalVector& g) {
+        return element(f, V, samples + static_cast<std::size_t>(f) * per_face, &g, nullptr, false);
+      },
+      gradient);
 }
 
 const Eigen::SparseMatrix<double>& FitEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
                                                       bool project_psd) const {
+  const Sample* samples = samples_at(V).data();
+  const std::size_t per_face = quadrature_.weights.size();
   // The per-point projection already makes each block PSD; the assembly need not redo it.
   return assembly_.hessian(
-      [&](int f, LocalMatrix& h) { element(f, V, nullptr, &h, project_psd); }, false);
+      [&](int f, LocalMatrix& h) {
+        element(f, V, samples + static_cast<std::size_t>(f) * per_face, nullptr, &h, project_psd);
+      },
+      false);
 }
 
 }  // namespace gr

@@ -28,6 +28,10 @@ struct TriangleQuadrature {
 /// The Hessian at a point with phi > 0 is 2 (∇phi ∇phiᵀ + phi ∇²phi) ⊗ (b bᵀ) for the
 /// point's barycentric weights b; with `project_psd` the 3×3 factor is projected to PSD
 /// (then the Kronecker product, and the face's sum, are PSD too).
+/// The distance field is sampled once per point for the gradient and the Hessian: the
+/// samples (value, gradient, Hessian of phi) taken for one are kept for the other, and for
+/// the value, while the positions stay the same (the solver asks for all three at each
+/// Newton iterate). Not safe for concurrent use.
 class FitEnergy {
  public:
   static constexpr int kStencilSize = 9;
@@ -51,15 +55,30 @@ class FitEnergy {
                                              bool project_psd = true) const;
 
  private:
-  /// Value of one face and, when the pointers are not null, its gradient and Hessian.
-  double element(int face, const Eigen::Ref<const MatrixX3d>& V, LocalVector* g, LocalMatrix* h,
-                 bool project_psd) const;
+  /// phi and its derivatives at one quadrature point.
+  struct Sample {
+    double phi = 0.0;
+    Vector3d gradient = Vector3d::Zero();
+    Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+  };
+
+  /// Value of one face and, when the pointers are not null, its gradient and Hessian; from
+  /// `samples` (the face's quadrature points) when not null, else from the field.
+  double element(int face, const Eigen::Ref<const MatrixX3d>& V, const Sample* samples,
+                 LocalVector* g, LocalMatrix* h, bool project_psd) const;
+  /// The samples at V, taken now unless they were taken at V last time.
+  const std::vector<Sample>& samples_at(const Eigen::Ref<const MatrixX3d>& V) const;
+  bool has_samples_at(const Eigen::Ref<const MatrixX3d>& V) const;
+  /// Quadrature point q of face f at V.
+  Vector3d point(int face, std::size_t q, const Eigen::Ref<const MatrixX3d>& V) const;
 
   std::vector<std::array<int, 3>> faces_;
   std::vector<double> rest_areas_;
   const DistanceField* field_;
   TriangleQuadrature quadrature_;
   StencilAssembly<kStencilSize> assembly_;
+  mutable std::vector<Sample> samples_;  ///< per face, per quadrature point
+  mutable MatrixX3d sampled_positions_;  ///< where samples_ were taken (empty: nowhere yet)
 };
 
 }  // namespace gr

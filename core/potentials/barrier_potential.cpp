@@ -9,6 +9,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include "core/barrier/barrier.hpp"
+#include "core/broad_phase/pair_separation.hpp"
 #include "core/common/errors.hpp"
 #include "core/common/psd_projection.hpp"
 #include "core/distance/edge_edge_distance.hpp"
@@ -36,21 +37,6 @@ PairStencil stencil_of(const Candidates& candidates, std::size_t k) {
   }
   const EdgeEdgeCandidate& c = candidates.edge_edge[k - candidates.point_triangle.size()];
   return {{c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]}, true};
-}
-
-/// Squared distance between the bounding boxes of the pair's two primitives (vertices
-/// [0, split) and [split, 4)): a lower bound on the pair's squared distance.
-double box_gap_sq(const std::array<Vector3d, 4>& x, int split) {
-  Vector3d lo_a = x[0], hi_a = x[0], lo_b = x[split], hi_b = x[split];
-  for (int i = 1; i < split; ++i) {
-    lo_a = lo_a.cwiseMin(x[i]);
-    hi_a = hi_a.cwiseMax(x[i]);
-  }
-  for (int i = split + 1; i < 4; ++i) {
-    lo_b = lo_b.cwiseMin(x[i]);
-    hi_b = hi_b.cwiseMax(x[i]);
-  }
-  return (lo_a - hi_b).cwiseMax(lo_b - hi_a).cwiseMax(0.0).squaredNorm();
 }
 
 std::array<Vector3d, 4> gather(const Eigen::Ref<const MatrixX3d>& V, const std::array<int, 4>& ids) {
@@ -104,9 +90,9 @@ BarrierPotential::PairEnergy BarrierPotential::pair_energy(const Candidates& can
   const PairStencil pair = stencil_of(candidates, k);
   const std::array<Vector3d, 4> x = gather(V, pair.vertices);
   const double xhat = dhat_ * dhat_;
-  // Most candidates (swept ones above all) are far apart: their boxes already say so, which
-  // is much cheaper than classifying the closest features.
-  if (box_gap_sq(x, pair.edge_edge ? 2 : 1) >= xhat) return {0.0, false};
+  // Most candidates (swept ones above all) are far apart: a separation bound already says
+  // so, which is much cheaper than classifying the closest features.
+  if (pair_separation_lower_bound(x, pair.edge_edge ? 2 : 1, dhat_) >= dhat_) return {0.0, false};
   const bool derivatives = gradient || hessian;
   Vector12d gd;
   Matrix12d Hd;

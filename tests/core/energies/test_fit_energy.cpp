@@ -1,3 +1,5 @@
+#include <atomic>
+
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
@@ -70,4 +72,57 @@ TEST_CASE("fit energy: faces with all three vertices listed as no-fit are left o
   const FitEnergy none(rest, {0, 1, 2, 3, 4, 5, 6, 7, 8}, field, 1, DofLayout{9});
   CHECK(none.fit_face_count() == 0);
   CHECK(none.value(rest.vertices) == 0.0);
+}
+
+namespace {
+
+/// A distance field that counts its samples.
+class CountingField : public DistanceField {
+ public:
+  explicit CountingField(const DistanceField& field) : field_(field) {}
+  double evaluate(const Vector3d& p, Vector3d* gradient, Eigen::Matrix3d* hessian) const override {
+    ++count;
+    return field_.evaluate(p, gradient, hessian);
+  }
+  mutable std::atomic<int> count{0};
+
+ private:
+  const DistanceField& field_;
+};
+
+}  // namespace
+
+TEST_CASE("fit energy: one sampling per iterate serves gradient, Hessian and value", "[energies][fit]") {
+  const TriangleMesh rest = test::icosphere(1, 1.05);
+  const test::SphereField sphere(Vector3d(0.1, 0.0, 0.0), 1.0);
+  const CountingField field(sphere);
+  const DofLayout layout{static_cast<int>(rest.vertices.rows())};
+  const FitEnergy cached(rest, {}, field, 3, layout);
+  const int points = 3 * cached.fit_face_count();
+  MatrixX3d moved = rest.vertices;
+  moved.col(0).array() += 0.01;
+
+  Eigen::VectorXd g;
+  const double from_gradient = cached.gradient(rest.vertices, g);
+  CHECK(field.count == points);
+  const Eigen::SparseMatrix<double> H = cached.hessian(rest.vertices);
+  CHECK(cached.value(rest.vertices) == from_gradient);
+  CHECK(field.count == points);  // the Hessian and the value reused the gradient's samples
+  const double at_moved = cached.value(moved);
+  CHECK(field.count == 2 * points);
+  CHECK(cached.value(rest.vertices) == from_gradient);  // a line-search point keeps them
+  CHECK(field.count == 2 * points);
+
+  // Same numbers as an energy that samples afresh for each call.
+  const FitEnergy fresh(rest, {}, sphere, 3, layout);
+  Eigen::VectorXd g_fresh;
+  fresh.gradient(moved, g_fresh);  // sampled at another point first
+  CHECK(fresh.value(rest.vertices) == from_gradient);
+  CHECK(fresh.value(moved) == at_moved);
+  fresh.gradient(rest.vertices, g_fresh);
+  CHECK(g_fresh == g);
+  CHECK((Eigen::MatrixXd(fresh.hessian(rest.vertices)) - Eigen::MatrixXd(H)).norm() == 0.0);
+  const Eigen::SparseMatrix<double> H_moved = cached.hessian(moved);
+  CHECK(field.count == 3 * points);
+  CHECK((Eigen::MatrixXd(fresh.hessian(moved)) - Eigen::MatrixXd(H_moved)).norm() == 0.0);
 }
