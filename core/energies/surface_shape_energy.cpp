@@ -14,7 +14,7 @@ using ReducedMatrix = Eigen::Matrix<double, 9, 9>;
 using Reduction = Eigen::Matrix<double, 9, 12>;
 
 /// Below this ratio (Frobenius norms) of the Hessian's second-order part to its
-/// Gauss–Newton part the projection is replaced by Gauss–Newton (see element_hessian).
+/// Gauss–Newton part, the PSD Hessian drops the second-order part (see element_hessian).
 constexpr double kGaussNewtonRatio = 1e-3;
 
 /// [v]×, so that cross_matrix(v) * u = v × u.
@@ -164,17 +164,27 @@ void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVect
   second.block<3, 3>(3, 0) = c1 * B.transpose();
   second.block<3, 3>(0, 6) = -c2 * B;
   second.block<3, 3>(6, 0) = -c2 * B.transpose();
-  // JᵀJ is PSD, so the exact Hessian's negative eigenvalues are at most |second| in size
-  // and the projection moves it by no more than that; dropping `second` (Gauss–Newton)
-  // moves it by |second|. When that is negligible against JᵀJ the two are equally good
-  // PSD stand-ins, and Gauss–Newton needs no eigen-decomposition (most elements: the
-  // residual r is small wherever the shape is kept).
-  const bool gauss_newton =
-      project_psd && second.squaredNorm() <= kGaussNewtonRatio * kGaussNewtonRatio * reduced.squaredNorm();
-  if (!gauss_newton) {
+  if (!project_psd) {
     reduced += second;
-    if (project_psd) reduced = project_to_psd(reduced);
+  } else if (second.squaredNorm() > kGaussNewtonRatio * kGaussNewtonRatio * reduced.squaredNorm()) {
+    // `second` is [[0, M], [Mᵀ, 0]] with M = [c1 B, -c2 B]: its eigenvalues are ±γρ (each
+    // twice, γ = |(c1, c2)|, ρ = |r|) and zeros, and its positive part has the closed form
+    // ½ [[(MMᵀ)^½, M], [Mᵀ, (MᵀM)^½]] with (MMᵀ)^½ = γρP, (MᵀM)^½ = (ccᵀ/γ) ⊗ ρP,
+    // P = I - r̂r̂ᵀ, c = (c1, -c2). JᵀJ plus that part is PSD without an eigen-decomposition
+    // and lies above the exact Hessian by the rank-two negative part.
+    const double rho = r.norm();
+    const double gamma = std::hypot(c1, c2);
+    const Eigen::Matrix3d P =
+        rho * (Eigen::Matrix3d::Identity() - r * r.transpose() / (rho * rho));
+    reduced += 0.5 * second;
+    reduced.block<3, 3>(0, 0) += 0.5 * gamma * P;
+    const double c[2] = {c1, -c2};
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        reduced.block<3, 3>(3 + 3 * i, 3 + 3 * j) += 0.5 * c[i] * c[j] / gamma * P;
   }
+  // Otherwise the second-order part is negligible against JᵀJ and is dropped (Gauss–Newton):
+  // most elements, since the residual r is small wherever the shape is kept.
   reduced *= 2.0 * element.weight;
   h = expand_reduced(reduced);
 }

@@ -46,13 +46,12 @@ class SurfaceShapeEnergy {
   double value(const Eigen::Ref<const MatrixX3d>& V) const;
   /// Gradient over x (layout.dof_count()), overwritten; returns the energy.
   double gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const;
-  /// Hessian over x. With `project_psd` each element's Hessian is projected to PSD in the
-  /// element's edge-vector coordinates (e, u1, u2): the energy depends on the 12
-  /// coordinates only through these 9 (translation invariance), H = Tᵀ Ĥ T, and Tᵀ Ĥ⁺ T is
-  /// PSD at the cost of a 9×9 rather than a 12×12 eigendecomposition. Where the
-  /// second-order part (linear in the residual) is below 1e-3 of the Gauss–Newton part JᵀJ
-  /// (Frobenius norms) the element uses JᵀJ instead, PSD without a decomposition and as
-  /// close to the exact Hessian as the projection would be, up to that ratio.
+  /// Hessian over x. With `project_psd` each element's Hessian is made PSD in closed form:
+  /// it is JᵀJ (Gauss–Newton, PSD) plus a second-order part linear in the residual, whose
+  /// spectrum is known (see element_hessian), so the element keeps JᵀJ plus that part's
+  /// positive half. The result lies above the exact Hessian by a rank-two term no larger
+  /// than the second-order part. Where that part is below 1e-3 of JᵀJ (Frobenius norms)
+  /// it is dropped.
   const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
                                              bool project_psd = true) const;
 
