@@ -112,11 +112,24 @@ void GarmentProblem::hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<do
   const Eigen::SparseMatrix<double>* position = position_ ? &position_->hessian(V, t, project_psd) : nullptr;
   const Eigen::SparseMatrix<double>* fit = fit_ ? &fit_->hessian(V, project_psd) : nullptr;
   // Every term but contact keeps its pattern: their sum goes into a union pattern made once
-  // (the surface term's pattern holds the whole diagonal, so the t entry exists).
+  // (the surface term's pattern holds the whole diagonal, so the t entry exists). With t
+  // free its whole row and column are in it too: any garment vertex may come into contact
+  // with the moving avatar, and the linear solver should not have to drop those couplings.
   if (fixed_hessian_.size() == 0) {
     Eigen::SparseMatrix<double> pattern = surface;
     if (position) pattern += *position;
     if (fit) pattern += *fit;
+    if (layout_.t_free) {
+      std::vector<Eigen::Triplet<double>> t_entries;
+      const int t = layout_.t_index();
+      for (int dof = 0; dof < layout_.dof_count(); ++dof) {
+        t_entries.emplace_back(t, dof, 0.0);
+        t_entries.emplace_back(dof, t, 0.0);
+      }
+      Eigen::SparseMatrix<double> t_pattern(layout_.dof_count(), layout_.dof_count());
+      t_pattern.setFromTriplets(t_entries.begin(), t_entries.end());
+      pattern += t_pattern;
+    }
     pattern.makeCompressed();
     fixed_hessian_ = std::move(pattern);
   }

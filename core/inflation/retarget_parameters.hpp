@@ -17,10 +17,12 @@ struct RetargetParameters {
   bool self_contact = true;   ///< model garment–garment contact
 
   /// eps_tol, step tolerance, iteration cap of each solve; a Newton step moves no vertex
-  /// (garment, or avatar through t) more than 0.1 units at once.
+  /// (garment, or avatar through t) more than 0.1 units at once; new contact pairs up to
+  /// 0.1% of the Hessian's pattern reuse its symbolic analysis.
   NewtonOptions newton = [] {
     NewtonOptions options;
     options.max_step_length = 0.1;
+    options.pattern_slack = 0.001;
     return options;
   }();
   CcdOptions ccd;

@@ -1,6 +1,7 @@
 #include "core/solver/linear_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 
 // Thread controls of the dense kernels under CHOLMOD, looked up at run time: present when
@@ -35,25 +36,36 @@ LinearSolver::LinearSolver() {
   cholesky_.cholmod().print = 0;
 }
 
-bool LinearSolver::pad(const Eigen::SparseMatrix<double>& A) {
+bool LinearSolver::pad(const Eigen::SparseMatrix<double>& A, Eigen::Index max_dropped) {
   if (padded_.rows() != A.rows() || padded_.cols() != A.cols()) return false;
   const int* outer = padded_.outerIndexPtr();
   const int* inner = padded_.innerIndexPtr();
   double* values = padded_.valuePtr();
   std::fill(values, values + padded_.nonZeros(), 0.0);
+  std::fill(compensation_.begin(), compensation_.end(), 0.0);
+  Eigen::Index dropped = 0;
   for (Eigen::Index c = 0; c < A.cols(); ++c) {
     int k = outer[c];
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
       while (k < outer[c + 1] && inner[k] < it.index()) ++k;
-      if (k == outer[c + 1] || inner[k] != it.index()) return false;
-      values[k] = it.value();
+      if (k < outer[c + 1] && inner[k] == it.index()) {
+        values[k] = it.value();
+        continue;
+      }
+      const std::size_t column = static_cast<std::size_t>(c);
+      if (it.index() == c || diagonal_[column] < 0 || ++dropped > max_dropped) return false;
+      compensation_[column] += std::abs(it.value());
     }
   }
+  if (dropped > 0)
+    for (std::size_t c = 0; c < compensation_.size(); ++c)
+      if (compensation_[c] != 0.0) values[diagonal_[c]] += compensation_[c];
   return true;
 }
 
 bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift) {
-  if (!pad(A)) {
+  const auto max_dropped = static_cast<Eigen::Index>(pattern_slack_ * padded_.nonZeros());
+  if (!pad(A, max_dropped)) {
     constexpr double kMaxUnionGrowth = 1.25;
     Eigen::SparseMatrix<double> pattern = A;
     if (padded_.rows() == A.rows() && padded_.cols() == A.cols()) {
@@ -65,7 +77,12 @@ bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift)
     padded_ = std::move(pattern);
     cholesky_.analyzePattern(padded_);
     ++analysis_count_;
-    const bool padded = pad(A);
+    diagonal_.assign(static_cast<std::size_t>(padded_.cols()), -1);
+    compensation_.assign(static_cast<std::size_t>(padded_.cols()), 0.0);
+    for (Eigen::Index c = 0; c < padded_.cols(); ++c)
+      for (Eigen::Index k = padded_.outerIndexPtr()[c]; k < padded_.outerIndexPtr()[c + 1]; ++k)
+        if (padded_.innerIndexPtr()[k] == c) diagonal_[static_cast<std::size_t>(c)] = k;
+    const bool padded = pad(A, 0);
     eigen_assert(padded);
     (void)padded;
   }

@@ -14,14 +14,25 @@ namespace gr {
 /// patterns (contact pairs come and go between Newton steps; the union lets the next
 /// steps reuse it), or on the new pattern alone once the union has grown past
 /// 1.25 times the matrix's own size.
+/// With a pattern slack s > 0, a matrix with at most s·nnz off-diagonal entries outside the
+/// analysed pattern keeps the analysis: each such entry a_ij is dropped and |a_ij| added to
+/// a_jj (its mirror adds to a_ii). That adds [[|a|, -a], [-a, |a|]] per pair, which is PSD,
+/// so the factored matrix stays symmetric, is at least A, and is positive definite when A
+/// is. Contact pairs appear a few at a time; re-analysing for each costs more than the
+/// slightly weaker Newton direction.
 class LinearSolver {
  public:
   LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
-  /// Factors A + shift·I. A is symmetric with both triangles stored (only the lower one is
-  /// read). @return false when CHOLMOD finds A + shift·I not positive definite numerically.
+  /// Off-diagonal entries outside the analysed pattern that may be dropped (see above), as
+  /// a fraction of the pattern's size; 0 (the default) factors A exactly.
+  void set_pattern_slack(double fraction) { pattern_slack_ = fraction; }
+
+  /// Factors A + shift·I (with entries outside the pattern compensated, see above). A is
+  /// symmetric with both triangles stored (only the lower one is read).
+  /// @return false when CHOLMOD finds the matrix not positive definite numerically.
   bool factorize(const Eigen::SparseMatrix<double>& A, double shift = 0.0);
   /// Solves with the last successful factorization. @pre factorize returned true.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
@@ -30,12 +41,16 @@ class LinearSolver {
   int analysis_count() const { return analysis_count_; }
 
  private:
-  /// Writes A's values into padded_ (the analysed pattern); false when A has an entry
-  /// outside it.
-  bool pad(const Eigen::SparseMatrix<double>& A);
+  /// Writes A's values into padded_ (the analysed pattern), dropping and compensating at
+  /// most `max_dropped` off-diagonal entries outside it; false when more lie outside, or a
+  /// diagonal one does.
+  bool pad(const Eigen::SparseMatrix<double>& A, Eigen::Index max_dropped);
 
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky_;
   Eigen::SparseMatrix<double> padded_;  ///< the analysed pattern, holding the last values
+  std::vector<Eigen::Index> diagonal_;  ///< position of each column's diagonal in padded_, or -1
+  std::vector<double> compensation_;    ///< per column, |dropped entries| to add to its diagonal
+  double pattern_slack_ = 0.0;
   int analysis_count_ = 0;
 };
 

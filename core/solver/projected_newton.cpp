@@ -41,6 +41,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   NewtonResult result;
+  linear_solver_.set_pattern_slack(options_.pattern_slack);
   const double sqrt_dofs = std::sqrt(static_cast<double>(std::max(problem.dof_count(), 1)));
   const auto finish = [&](SolverStatus status, std::string message) {
     result.status = status;

@@ -49,6 +49,10 @@ struct NewtonOptions {
   /// `shift_retries` failures take the gradient descent direction.
   double first_shift = 1e-10;
   int shift_retries = 3;
+  /// LinearSolver::set_pattern_slack: Hessian entries outside the analysed pattern that
+  /// may be dropped (compensated on the diagonal) instead of redoing the analysis, as a
+  /// fraction of the pattern's size. 0 solves with the exact Hessian.
+  double pattern_slack = 0.0;
 };
 
 /// Reported after each accepted step.

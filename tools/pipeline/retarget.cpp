@@ -200,6 +200,9 @@ RetargetResult run_retarget(const RetargetOptions& options) {
       reachable_avatar_faces(normalized.garment.vertices, shrunk.vertices,
                              normalized.avatar.vertices, normalized.avatar.faces, scope_margin);
   report.avatar_faces_modelled = static_cast<int>(problem_scene.avatar_faces_used.size());
+  // Every face in reach is every face: nothing a solve could leave, so no second solve.
+  if (report.avatar_faces_modelled == report.avatar_faces_total)
+    problem_scene.avatar_faces_used.clear();
   if (has_skeletons)
     problem_scene.skeletons = SkeletonMotion{normalized.source_skeleton->joints,
                                              normalized.target_skeleton->joints,

@@ -275,3 +275,46 @@ TEST_CASE("linear solver: symbolic analysis reused within the analysed pattern; 
     CHECK((wider * solver.solve(b) - b).norm() < 1e-12);
   }
 }
+
+TEST_CASE("linear solver: with pattern slack a few new entries keep the analysis and are "
+          "compensated on the diagonal",
+          "[solver][linear]") {
+  const int n = 400;
+  QuadraticProblem problem(n);
+  Eigen::SparseMatrix<double> A;
+  problem.hessian(Eigen::VectorXd(), A);
+  A.makeCompressed();
+  LinearSolver solver;
+  solver.set_pattern_slack(0.01);  // the tridiagonal pattern has 1198 entries: 11 may drop
+  REQUIRE(solver.factorize(A));
+  REQUIRE(solver.analysis_count() == 1);
+
+  const auto with_couplings = [&A](const std::vector<std::pair<int, int>>& pairs, double value) {
+    Eigen::SparseMatrix<double> M = A;
+    for (const auto& [i, j] : pairs) M.coeffRef(i, j) = M.coeffRef(j, i) = value;
+    M.makeCompressed();
+    return M;
+  };
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  SECTION("within the slack: same analysis, the solve is of A plus [[|a|, -a], [-a, |a|]]") {
+    const double a = -0.7;
+    const Eigen::SparseMatrix<double> M = with_couplings({{0, 200}, {10, 300}}, a);
+    REQUIRE(solver.factorize(M));
+    CHECK(solver.analysis_count() == 1);
+    Eigen::MatrixXd compensated = Eigen::MatrixXd(A);
+    for (const int i : {0, 200, 10, 300}) compensated(i, i) += std::abs(a);
+    const Eigen::VectorXd x = solver.solve(b);
+    CHECK((compensated * x - b).norm() <= 1e-10 * b.norm());
+    // The compensated matrix exceeds M by a PSD matrix.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> excess(compensated - Eigen::MatrixXd(M));
+    CHECK(excess.eigenvalues().minCoeff() >= -1e-12);
+  }
+  SECTION("beyond the slack: analysed again on the union, solved exactly") {
+    std::vector<std::pair<int, int>> pairs;
+    for (int k = 0; k < 12; ++k) pairs.emplace_back(k, 100 + 20 * k);
+    const Eigen::SparseMatrix<double> M = with_couplings(pairs, -0.5);
+    REQUIRE(solver.factorize(M));
+    CHECK(solver.analysis_count() == 2);
+    CHECK((M * solver.solve(b) - b).norm() <= 1e-10 * b.norm());
+  }
+}
