@@ -4,7 +4,9 @@ namespace gr {
 
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
                       const RetargetParameters& parameters, const NewtonCallback& on_newton_step) {
-  GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kFit);
+  RetargetParameters fit_parameters = parameters;
+  fit_parameters.dhat = parameters.fit_support();
+  GarmentProblem problem(scene, fit_parameters, GarmentProblem::Stage::kFit);
   Eigen::VectorXd x = problem.layout().pack(1.0, inflated);
   ProjectedNewton newton(parameters.newton);
   FitResult result;

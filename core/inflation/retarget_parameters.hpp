@@ -11,6 +11,11 @@ struct RetargetParameters {
   double w_surf = 1.0;
   double w_contact = 1e8;
   double dhat = 0.002;        ///< barrier support (a distance)
+  /// Barrier support in the fit step, where a thinner barrier lets the garment settle
+  /// closer to the body; 0: dhat. The fit starts where the inflation left every pair
+  /// apart, so any positive value is safe.
+  double fit_dhat = 0.0;
+  double fit_support() const { return fit_dhat > 0.0 ? fit_dhat : dhat; }
   double w_pos = 10.0;        ///< only used when skeletons are given
   double w_fit = 2.0;         ///< fit step only
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6

@@ -60,6 +60,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
   Eigen::SparseMatrix<double> H;
   // Energies at the last energy_window + 1 accepted points, the current one last.
   std::deque<double> recent_energies{energy};
+  const double start_energy = energy;
   for (;;) {
     problem.gradient(x, g);
     result.gradient_norm = g.norm();
@@ -80,11 +81,12 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     if (options_.energy_tolerance > 0.0 && window > 0 &&
         static_cast<int>(recent_energies.size()) > window) {
       const double decrease = recent_energies.front() - energy;
-      if (decrease <= options_.energy_tolerance * std::abs(energy))
+      const double reference = std::min(std::abs(energy), start_energy - energy);
+      if (decrease <= options_.energy_tolerance * reference)
         return finish(SolverStatus::kConverged,
                       fmt::format("energy fell by {:.3g} (relative {:.3g} <= {:.3g}) over the last "
                                   "{} steps, after {} steps",
-                                  decrease, decrease / std::abs(energy), options_.energy_tolerance,
+                                  decrease, decrease / reference, options_.energy_tolerance,
                                   window, result.iterations));
     }
 

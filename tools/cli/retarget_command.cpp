@@ -35,13 +35,18 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
                   "skeletons are given, else levelset")
       ->check(CLI::IsMember({"levelset", "skeleton"}));
   cmd->add_option("--quality", options->quality,
-                  "Speed against accuracy preset: fast, balanced (the paper's settings) or "
-                  "accurate; the options below override single parameters")
+                  "Speed against accuracy preset: fast, balanced (the paper's settings but a "
+                  "barrier stiffness of 1e6) or accurate; the options below override single "
+                  "parameters")
       ->check(CLI::IsMember({"fast", "balanced", "accurate"}))
       ->capture_default_str();
   auto& o = options->overrides;
   const char* units = " (normalized scene units: the avatar is about 2 tall)";
   cmd->add_option("--dhat", o.dhat, std::string("Barrier support distance") + units)
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--fit-dhat", o.fit_dhat,
+                  std::string("Barrier support distance in the fit step (default: --dhat; "
+                              "accurate: half of it)") + units)
       ->check(CLI::PositiveNumber);
   cmd->add_option("--eps-tol", o.eps_tol, "Newton stops when the gradient norm is below this")
       ->check(CLI::PositiveNumber);

@@ -28,17 +28,20 @@ PipelineParameters parameters_for_quality(const std::string& quality) {
     s.newton.step_tolerance = 1e-6;
     s.newton.max_iterations = 1000;
     s.fit_samples_per_face = 6;
+    s.fit_dhat = 0.5 * s.dhat;
     p.voxel_size = 0.005;
   } else {
     throw std::invalid_argument("unknown quality '" + quality + "' (fast, balanced, accurate)");
   }
   s.newton.energy_tolerance = energy_tolerance_for(s.newton.gradient_tolerance);
+  s.w_contact = kPresetBarrierStiffness;
   return p;
 }
 
 void ParameterOverrides::apply_to(PipelineParameters& p) const {
   RetargetParameters& s = p.solver;
   if (dhat) s.dhat = *dhat;
+  if (fit_dhat) s.fit_dhat = *fit_dhat;
   if (w_contact) s.w_contact = *w_contact;
   if (w_fit) s.w_fit = *w_fit;
   if (w_pos) s.w_pos = *w_pos;

@@ -12,6 +12,7 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"quality", r.quality},
       {"parameters",
        {{"dhat", p.solver.dhat},
+        {"fit_dhat", p.solver.fit_support()},
         {"w_surf", p.solver.w_surf},
         {"w_contact", p.solver.w_contact},
         {"w_fit", p.solver.w_fit},

@@ -125,7 +125,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   // Normalize.
   stage = StageTimer();
   NormalizedScene normalized =
-      make_normalized_scene(scene, lattice_spacing(parameters.solver.dhat));
+      make_normalized_scene(scene, lattice_spacing(std::min(parameters.solver.dhat,
+                                                            parameters.solver.fit_support())));
   // Rounding to the lattice can fold a sliver or close a hairline gap: keep the exact
   // coordinates then, and refuse the garment only if it crosses itself as given.
   if (garment_intersects_itself(normalized.garment)) normalized = make_normalized_scene(scene);
