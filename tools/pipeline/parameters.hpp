@@ -18,7 +18,7 @@ struct PipelineParameters {
 
 /// Barrier stiffness of every preset: 1e6 rather than the paper's 1e8. Measured on both
 /// shared scenes, the stiffer barrier makes the fit creep (line searches cut steps as pairs
-/// enter the barrier) and ends no closer: balanced took 26 s against 17 s on goblin_puffer,
+/// enter the barrier) and ends no closer: balanced took 30 s against 16 s on goblin_puffer,
 /// with a mean fit error of 1.22e-4 against 1.09e-4.
 constexpr double kPresetBarrierStiffness = 1e6;
 
