@@ -118,10 +118,12 @@ NormalizedScene make_normalized_scene(const Scene& scene, double lattice) {
   out.avatar = {to_lattice(avatar_frame, scene.avatar.mesh.vertices, lattice),
                 scene.avatar.mesh.faces};
   if (scene.source_skeleton && scene.target_skeleton) {
-    out.source_skeleton = Skeleton{to_lattice(garment_frame, scene.source_skeleton->joints, lattice),
-                                   scene.source_skeleton->bones};
-    out.target_skeleton = Skeleton{to_lattice(avatar_frame, scene.target_skeleton->joints, lattice),
-                                   scene.target_skeleton->bones};
+    out.source_skeleton =
+        Skeleton{to_lattice(garment_frame, scene.source_skeleton->joints, lattice),
+                 scene.source_skeleton->bones};
+    out.target_skeleton =
+        Skeleton{to_lattice(avatar_frame, scene.target_skeleton->joints, lattice),
+                 scene.target_skeleton->bones};
   }
   return out;
 }

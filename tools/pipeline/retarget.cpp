@@ -38,13 +38,9 @@ constexpr double kFitBand = 0.1;
 /// Newton progress lines: the first steps, then every tenth.
 constexpr int kNewtonLogEvery = 10;
 
-bool garment_intersects_itself(const TriangleMesh& garment) {
-  return find_self_intersecting_face_pairs(garment, 1).pairs.count > 0;
-}
-
-/// Rejects a garment that crosses itself as given: no solver output could be certified.
-void require_garment_free_of_itself(const Scene& scene, const TriangleMesh& garment) {
-  const SelfIntersections self = find_self_intersecting_face_pairs(garment, 1);
+/// Rejects a garment that crosses itself as given (`self`, found on its normalized copy):
+/// no solver output could be certified.
+void require_garment_free_of_itself(const Scene& scene, const SelfIntersections& self) {
   if (self.pairs.count == 0) return;
   const auto& pair = self.pairs.pairs.front();
   const auto& face_to_obj = scene.garment.face_to_obj;
@@ -129,8 +125,12 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                                                             parameters.solver.fit_support())));
   // Rounding to the lattice can fold a sliver or close a hairline gap: keep the exact
   // coordinates then, and refuse the garment only if it crosses itself as given.
-  if (garment_intersects_itself(normalized.garment)) normalized = make_normalized_scene(scene);
-  require_garment_free_of_itself(scene, normalized.garment);
+  SelfIntersections self = find_self_intersecting_face_pairs(normalized.garment, 1);
+  if (self.pairs.count > 0 && normalized.lattice > 0.0) {
+    normalized = make_normalized_scene(scene);
+    self = find_self_intersecting_face_pairs(normalized.garment, 1);
+  }
+  require_garment_free_of_itself(scene, self);
   const Normalization& frames = normalized.normalization;
   report.scene_scale = frames.avatar_to_scene.scale;
   report.lattice = normalized.lattice;

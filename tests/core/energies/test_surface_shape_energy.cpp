@@ -28,6 +28,16 @@ TriangleMesh random_hinge(int seed) {
   return rest;
 }
 
+/// The element's four corners at rest (local coordinates q), each coordinate moved by a
+/// uniform random amount in [-perturbation, perturbation].
+SurfaceShapeEnergy::LocalVector perturbed_corners(const TriangleMesh& rest,
+                                                  const SurfaceShapeEnergy::Element& element,
+                                                  double perturbation) {
+  SurfaceShapeEnergy::LocalVector q;
+  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = rest.vertices.row(element.vertices[v]).transpose();
+  return q + perturbation * SurfaceShapeEnergy::LocalVector::Random();
+}
+
 }  // namespace
 
 TEST_CASE("surface shape energy: element gradient and Hessian match finite differences",
@@ -40,9 +50,7 @@ TEST_CASE("surface shape energy: element gradient and Hessian match finite diffe
   const auto& element = energy.elements()[0];
 
   using Local = SurfaceShapeEnergy::LocalVector;
-  Local q;
-  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = rest.vertices.row(element.vertices[v]).transpose();
-  q += 0.3 * Local::Random();
+  const Local q = perturbed_corners(rest, element, 0.3);
 
   const auto f = [&](const Eigen::VectorXd& y) {
     return SurfaceShapeEnergy::element_value(element, Local(y));
@@ -138,10 +146,7 @@ TEST_CASE("surface shape energy: the element's PSD Hessian is the exact one plus
   const SurfaceShapeEnergy energy(rest, DofLayout{4});
   REQUIRE(energy.elements().size() == 1);
   const auto& element = energy.elements()[0];
-  using Local = SurfaceShapeEnergy::LocalVector;
-  Local q;
-  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = rest.vertices.row(element.vertices[v]).transpose();
-  q += perturbation * Local::Random();
+  const SurfaceShapeEnergy::LocalVector q = perturbed_corners(rest, element, perturbation);
 
   SurfaceShapeEnergy::LocalMatrix exact, psd;
   SurfaceShapeEnergy::element_hessian(element, q, exact, false);
