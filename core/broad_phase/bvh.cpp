@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 
 #include <tbb/parallel_invoke.h>
 
@@ -93,6 +94,30 @@ void Bvh::build(std::vector<Eigen::AlignedBox3d> boxes) {
   }
   nodes_.resize(static_cast<std::size_t>(subtree_nodes(static_cast<int>(n))));
   build_node(0, 0, static_cast<int>(n));
+}
+
+void Bvh::refit(const std::vector<Eigen::AlignedBox3d>& boxes) {
+  if (boxes.size() != ids_.size())
+    throw std::invalid_argument("a refit needs one box per primitive of the tree");
+  for (std::size_t k = 0; k < ids_.size(); ++k) boxes_[k] = FloatBox::outward(boxes[static_cast<std::size_t>(ids_[k])]);
+  // Children come after their parent in the flat array: one backward sweep.
+  for (std::size_t n = nodes_.size(); n-- > 0;) {
+    Node& node = nodes_[n];
+    if (node.count > 0) {
+      node.box = boxes_[static_cast<std::size_t>(node.first)];
+      for (int i = node.first + 1; i < node.first + node.count; ++i) node.box.extend(boxes_[static_cast<std::size_t>(i)]);
+    } else {
+      node.box = nodes_[n + 1].box;
+      node.box.extend(nodes_[static_cast<std::size_t>(node.first)].box);
+    }
+  }
+}
+
+double Bvh::looseness() const {
+  double nodes = 0.0, primitives = 0.0;
+  for (const Node& node : nodes_) nodes += node.box.half_perimeter();
+  for (const FloatBox& box : boxes_) primitives += box.half_perimeter();
+  return primitives > 0.0 ? nodes / primitives : 1.0;
 }
 
 void Bvh::build_node(int node, int begin, int end) {

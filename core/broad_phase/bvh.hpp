@@ -27,6 +27,16 @@ class Bvh {
   /// Number of primitives.
   int size() const { return static_cast<int>(ids_.size()); }
 
+  /// Gives primitive i the box boxes[i] (same count as built) and updates the node boxes
+  /// bottom-up, keeping the tree's shape: O(n), and queries stay exact. Their cost grows
+  /// as the primitives move away from the layout the tree was built for (see looseness).
+  /// @throw std::invalid_argument when the count differs from the tree's.
+  void refit(const std::vector<Eigen::AlignedBox3d>& boxes);
+  /// Sum of the node boxes' half perimeters over the primitives' (at least 1 for a
+  /// non-empty tree): how much space the descent wades through per primitive. A refitted
+  /// tree whose looseness has grown well past its value at build time is worth rebuilding.
+  double looseness() const;
+
   /// Calls `visit(id)` once for every primitive whose box intersects `query`.
   template <typename Visit>
   void query(const Eigen::AlignedBox3d& query_box, Visit&& visit) const {

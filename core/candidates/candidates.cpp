@@ -96,9 +96,28 @@ struct CandidateFinder::AvatarTrees {
   Bvh points, faces, edges;
 };
 
+/// The garment's trees, refitted to each query's boxes and rebuilt only when a refit has
+/// loosened one by more than kMaxLoosening over its value at build time.
+struct CandidateFinder::GarmentTrees {
+  static constexpr double kMaxLoosening = 1.25;
+  struct Tree {
+    Bvh tree;
+    double built_looseness = 0.0;
+    void update(std::vector<Box> boxes) {
+      if (tree.size() == static_cast<int>(boxes.size()) && tree.size() > 0) {
+        tree.refit(boxes);
+        if (tree.looseness() <= kMaxLoosening * built_looseness) return;
+      }
+      tree.build(std::move(boxes));
+      built_looseness = tree.looseness();
+    }
+  };
+  Tree points, faces, edges;
+};
+
 CandidateFinder::CandidateFinder(ContactMesh mesh)
     : mesh_(std::move(mesh)), avatar_points_(used_avatar_points(mesh_)),
-      avatar_trees_(std::make_unique<AvatarTrees>()) {}
+      avatar_trees_(std::make_unique<AvatarTrees>()), garment_trees_(std::make_unique<GarmentTrees>()) {}
 
 CandidateFinder::~CandidateFinder() = default;
 
@@ -122,11 +141,14 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
     avatar.radius = radius;
   }
 
-  Bvh garment_points, garment_faces, garment_edges;
+  GarmentTrees& garment = *garment_trees_;
+  const Bvh& garment_points = garment.points.tree;
+  const Bvh& garment_faces = garment.faces.tree;
+  const Bvh& garment_edges = garment.edges.tree;
   tbb::parallel_invoke(
-      [&] { garment_points.build(point_boxes(vertex_boxes, 0, ng, nullptr, grow)); },
-      [&] { garment_faces.build(element_boxes(mesh_.garment_faces, vertex_boxes, grow)); },
-      [&] { garment_edges.build(element_boxes(mesh_.garment_edges, vertex_boxes, grow)); },
+      [&] { garment.points.update(point_boxes(vertex_boxes, 0, ng, nullptr, grow)); },
+      [&] { garment.faces.update(element_boxes(mesh_.garment_faces, vertex_boxes, grow)); },
+      [&] { garment.edges.update(element_boxes(mesh_.garment_edges, vertex_boxes, grow)); },
       [&] {
         if (rebuild_avatar)
           avatar.points.build(point_boxes(vertex_boxes, 0, static_cast<int>(avatar_points_.size()),

@@ -36,6 +36,8 @@ struct Candidates {
 /// mesh over many calls, keeping what stays valid between them:
 /// - the avatar's trees are reused while the avatar's vertex boxes and the radius are
 ///   unchanged (in the fit the avatar does not move);
+/// - the garment's trees are refitted to each query's boxes, and rebuilt only when that
+///   has loosened them by a quarter over their state when built;
 /// - a static query whose vertices all lie on the last swept query's motion (each on its
 ///   segment, up to rounding; at no larger radius) filters that query's pairs instead of
 ///   searching again: a pair close at such a point is close somewhere along the motion, so
@@ -61,6 +63,7 @@ class CandidateFinder {
 
  private:
   struct AvatarTrees;
+  struct GarmentTrees;
   using Box = Eigen::AlignedBox3d;
 
   void check_positions(const Eigen::Ref<const MatrixX3d>& V) const;
@@ -76,6 +79,7 @@ class CandidateFinder {
   ContactMesh mesh_;
   std::vector<int> avatar_points_;  ///< avatar vertices that some contact face uses
   std::unique_ptr<AvatarTrees> avatar_trees_;
+  std::unique_ptr<GarmentTrees> garment_trees_;
   Candidates swept_;                ///< the last swept query's pairs
   MatrixX3d swept_start_, swept_end_;  ///< and its motion
   double swept_radius_ = -1.0;

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -89,4 +90,43 @@ TEST_CASE("BVH handles coincident boxes and touching faces", "[broad_phase][bvh]
   bvh.query(Eigen::AlignedBox3d(Eigen::Vector3d::Constant(1.0 + 1e-6), Eigen::Vector3d::Constant(2.0)),
             [&](int) { ++hits; });
   CHECK(hits == 0);
+}
+
+TEST_CASE("a refitted BVH answers as a rebuilt one and reports its loosening", "[broad_phase][bvh]") {
+  std::mt19937 rng(11u);
+  const auto boxes = random_boxes(rng, 900, 0.05);
+  gr::Bvh tree;
+  tree.build(boxes);
+  const double built = tree.looseness();
+  CHECK(built >= 1.0);
+
+  // Small moves keep the layout; a shuffle of the positions scrambles it.
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  std::vector<Eigen::AlignedBox3d> moved = boxes, shuffled = boxes;
+  for (auto& box : moved) box.translate(Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng)));
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  for (const auto* next : {&moved, &shuffled}) {
+    tree.refit(*next);
+    gr::Bvh rebuilt;
+    rebuilt.build(*next);
+    for (const auto& query : random_boxes(rng, 100, 0.1)) {
+      std::vector<int> from_refit, from_build;
+      tree.query(query, [&](int id) { from_refit.push_back(id); });
+      rebuilt.query(query, [&](int id) { from_build.push_back(id); });
+      std::sort(from_refit.begin(), from_refit.end());
+      std::sort(from_build.begin(), from_build.end());
+      REQUIRE(from_refit == from_build);
+    }
+    using Pair = std::pair<int, int>;
+    const auto emit = [](int i, int j, std::vector<Pair>& sink) { sink.emplace_back(std::min(i, j), std::max(i, j)); };
+    auto pairs_refit = tree.collect_pairs<Pair>(tree, emit), pairs_build = rebuilt.collect_pairs<Pair>(rebuilt, emit);
+    std::sort(pairs_refit.begin(), pairs_refit.end());
+    std::sort(pairs_build.begin(), pairs_build.end());
+    REQUIRE(pairs_refit == pairs_build);
+  }
+  tree.refit(moved);
+  CHECK(tree.looseness() < 1.25 * built);
+  tree.refit(shuffled);
+  CHECK(tree.looseness() > 2.0 * built);
+  CHECK_THROWS_AS(tree.refit(std::vector<Eigen::AlignedBox3d>(3)), std::invalid_argument);
 }
