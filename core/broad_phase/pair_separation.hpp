@@ -99,13 +99,32 @@ double lower_bound(const std::array<const std::array<Vector3d, 4>*, Frames>& fra
 /// in-plane normals of its edges; for two edges, their common normal and the offset between
 /// their centroids with either edge's direction removed. The boxes miss neighbours in one
 /// mesh (whose boxes overlap) and tilted layers; these axes do not. Degenerate axes (zero
-/// length) are skipped; 0 when nothing separates the hulls. Units: those of the positions.
+/// length) are skipped; 0 when nothing separates the hulls. With motion, the bound is also
+/// taken relative to the pair's mean motion (a common translation changes no distance), and
+/// the larger is returned. Units: those of the positions.
 /// @param enough stop as soon as the bound reaches this (the caller only compares with it).
 /// @pre split is 1 or 2.
 inline double pair_separation_lower_bound(const std::array<Vector3d, 4>& x0,
                                           const std::array<Vector3d, 4>& x1, int split,
                                           double enough = std::numeric_limits<double>::infinity()) {
-  return pair_separation_detail::lower_bound<2>({&x0, &x1}, split, enough);
+  const double bound = pair_separation_detail::lower_bound<2>({&x0, &x1}, split, enough);
+  if (bound >= enough) return bound;
+  // The same bound in a frame that follows the pair's mean motion: distances do not change
+  // under a common translation, and positions relative to a linearly moving point still
+  // move linearly. Two primitives carried along together stay tight there.
+  Vector3d m0 = Vector3d::Zero(), m1 = Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) {
+    m0 += x0[i];
+    m1 += x1[i];
+  }
+  m0 *= 0.25;
+  m1 *= 0.25;
+  std::array<Vector3d, 4> r0, r1;
+  for (int i = 0; i < 4; ++i) {
+    r0[i] = x0[i] - m0;
+    r1[i] = x1[i] - m1;
+  }
+  return std::max(bound, pair_separation_detail::lower_bound<2>({&r0, &r1}, split, enough));
 }
 
 /// The bound above for positions x, without motion.
