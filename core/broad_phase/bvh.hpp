@@ -65,6 +65,12 @@ class Bvh {
   /// unordered pair of distinct primitives is passed once.
   template <typename T, typename Emit>
   std::vector<T> collect_pairs(const Bvh& other, const Emit& emit) const;
+  /// As collect_pairs, on the calling thread, appending to `sink`: for many small trees
+  /// searched in parallel by the caller.
+  template <typename T, typename Emit>
+  void append_pairs(const Bvh& other, const Emit& emit, std::vector<T>& sink) const {
+    if (!nodes_.empty() && !other.nodes_.empty()) descend_pairs(other, NodePair{0, 0}, emit, sink);
+  }
 
  private:
   /// Depth of the stacks used while descending; median splits keep the depth near

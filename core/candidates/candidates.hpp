@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "core/candidates/contact_mesh.hpp"
+#include "core/candidates/fold_free_regions.hpp"
 
 namespace gr {
 
@@ -45,6 +46,11 @@ struct Candidates {
 ///   each Newton step searches the trees once.
 /// - pairs whose boxes overlap but whose separation bound (pair_separation.hpp) rules them
 ///   out are dropped before they reach the narrow phase.
+/// - self pairs are searched region against region (fold_free_regions.hpp, made from the
+///   garment of the first query); with mesh.cull_fold_free, pairs inside a region, or
+///   across the seam of two neighbouring leaves, that `stays_fold_free` along the query's
+///   motion (clearing the query's radius) are left out: they cannot touch, nor come that
+///   close.
 /// The lists keep the order of the search they come from, the same on any thread count.
 /// Not safe for concurrent use.
 class CandidateFinder {
@@ -55,6 +61,15 @@ class CandidateFinder {
   CandidateFinder& operator=(const CandidateFinder&) = delete;
 
   const ContactMesh& mesh() const { return mesh_; }
+  /// The garment's regions (null before the first query with self contact).
+  const GarmentRegions* regions() const;
+  /// Per region, whether the last search left its inside out as fold free.
+  const std::vector<char>& fold_free() const;
+  /// Mean, over swept queries so far, of the fraction of garment faces whose self pairs
+  /// were left out as fold free (0 before any).
+  double mean_fold_free_fraction() const {
+    return swept_queries_ > 0 ? fold_free_fraction_sum_ / static_cast<double>(swept_queries_) : 0.0;
+  }
   /// As find_candidates. @throw std::invalid_argument when V has the wrong row count.
   Candidates find(const Eigen::Ref<const MatrixX3d>& V, double inflation_radius);
   /// As find_swept_candidates. @throw std::invalid_argument for a wrong row count.
@@ -76,7 +91,18 @@ class CandidateFinder {
   bool on_swept_motion(const Eigen::Ref<const MatrixX3d>& V) const;
   Candidates filter_swept(const Eigen::Ref<const MatrixX3d>& V, double radius) const;
 
+  /// Self pairs between regions, and within those not fold free along V0 → V1.
+  void self_pairs(const std::vector<Box>& point_boxes, const std::vector<Box>& face_boxes,
+                  const std::vector<Box>& edge_boxes, const Eigen::Ref<const MatrixX3d>& V0,
+                  const Eigen::Ref<const MatrixX3d>& V1, double threshold,
+                  std::vector<PointTriangleCandidate>& point_triangle,
+                  std::vector<EdgeEdgeCandidate>& edge_edge);
+
+  struct SelfSearch;
   ContactMesh mesh_;
+  std::unique_ptr<SelfSearch> self_;
+  long swept_queries_ = 0;
+  double fold_free_fraction_sum_ = 0.0;
   std::vector<int> avatar_points_;  ///< avatar vertices that some contact face uses
   std::unique_ptr<AvatarTrees> avatar_trees_;
   std::unique_ptr<GarmentTrees> garment_trees_;

@@ -31,6 +31,9 @@ class ContactEnergy {
   const ContactMesh& mesh() const { return finder_.mesh(); }
   const Candidates& candidates() const { return candidates_; }
   double dhat() const { return barrier_.dhat(); }
+  /// Mean fraction of garment faces whose self pairs were left out as fold free, over the
+  /// swept searches so far (CandidateFinder::mean_fold_free_fraction).
+  double mean_fold_free_fraction() const { return finder_.mean_fold_free_fraction(); }
 
   /// The avatar at t (#Va×3).
   MatrixX3d avatar(double t) const { return avatar_start_ + t * displacement_; }

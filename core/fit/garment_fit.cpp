@@ -12,6 +12,7 @@ FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3
   FitResult result;
   result.solve = newton.minimize(problem, x, on_newton_step);
   result.garment = problem.layout().garment(x);
+  result.fold_free_fraction = problem.contact().mean_fold_free_fraction();
   return result;
 }
 

@@ -7,6 +7,8 @@ namespace gr {
 struct FitResult {
   NewtonResult solve;   ///< status, iterations, energy; check solve.converged()
   MatrixX3d garment;    ///< #Vg×3, the last accepted point whatever the status
+  /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
+  double fold_free_fraction = 0.0;
 };
 
 /// Step 3: t fixed at 1, one projected Newton solve on the garment vertices with L_surf

@@ -35,6 +35,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     result.t = layout.t(x);
     result.lambda1 = al.lambda1;
     result.lambda2 = al.lambda2;
+    result.fold_free_fraction = problem.contact().mean_fold_free_fraction();
     result.elapsed_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

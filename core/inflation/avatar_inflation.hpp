@@ -37,6 +37,8 @@ struct InflationResult {
   int rounds = 0;
   int newton_iterations = 0; ///< summed over rounds
   int resets = 0;
+  /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
+  double fold_free_fraction = 0.0;
   double lambda1 = 0.0, lambda2 = 0.0;
   double elapsed_seconds = 0.0;
   std::string message;

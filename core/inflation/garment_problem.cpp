@@ -23,6 +23,13 @@ const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage sta
   return scene;
 }
 
+ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters& parameters) {
+  ContactMesh mesh = ContactMesh::build(scene.garment, scene.avatar, parameters.self_contact,
+                                        scene.avatar_faces_used);
+  mesh.cull_fold_free = !parameters.self_contact_everywhere;
+  return mesh;
+}
+
 /// target += weight · A, where A's pattern is within target's (both compressed, same size).
 void add_within_pattern(const Eigen::SparseMatrix<double>& A, double weight,
                         Eigen::SparseMatrix<double>& target) {
@@ -46,8 +53,7 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
       parameters_(parameters),
       layout_(layout_for(checked(scene, stage), stage)),
       surface_(scene.garment, layout_),
-      contact_(ContactMesh::build(scene.garment, scene.avatar, parameters.self_contact,
-                                  scene.avatar_faces_used),
+      contact_(contact_mesh_for(scene, parameters),
                scene.garment.vertices, scene.shrunk_avatar, scene.avatar.vertices, parameters.dhat,
                layout_) {
   if (scene.skeletons) {

@@ -20,6 +20,9 @@ struct RetargetParameters {
   double w_fit = 2.0;         ///< fit step only
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;   ///< model garment–garment contact
+  /// Model it everywhere, also inside regions that provably cannot fold onto themselves
+  /// during a step (core/candidates/fold_free_regions.hpp).
+  bool self_contact_everywhere = false;
 
   /// eps_tol, step tolerance, iteration cap of each solve; a Newton step moves no vertex
   /// (garment, or avatar through t) more than 0.1 units at once; new contact pairs up to

@@ -111,6 +111,9 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
       return finish(SolverStatus::kNoDescent,
                     fmt::format("no safe step along the search direction after {} steps",
                                 result.iterations));
+    // The problem may model this motion differently from the last one (a contact model that
+    // leaves out pairs which cannot touch along it): compare trials with its energy at x.
+    energy = problem.value(x);
     double trial_energy = 0.0;
     bool accepted = false;
     for (int halving = 0; halving <= options_.max_line_search_halvings; ++halving, alpha *= 0.5) {

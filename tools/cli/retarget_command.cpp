@@ -68,6 +68,10 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   cmd->add_flag_function(
       "--no-self-contact", [&o](std::int64_t) { o.self_contact = false; },
       "Do not model garment self-contact (the certificate still checks it)");
+  cmd->add_flag_function(
+      "--self-contact-everywhere", [&o](std::int64_t) { o.self_contact_everywhere = true; },
+      "Model garment self-contact also inside regions that provably cannot fold onto\n"
+      "themselves during a step (slower; the same guarantee)");
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");

@@ -55,6 +55,7 @@ void ParameterOverrides::apply_to(PipelineParameters& p) const {
   if (max_al_rounds) s.max_al_rounds = *max_al_rounds;
   if (fit_samples) s.fit_samples_per_face = *fit_samples;
   if (self_contact) s.self_contact = *self_contact;
+  if (self_contact_everywhere) s.self_contact_everywhere = *self_contact_everywhere;
 }
 
 }  // namespace gr

@@ -40,7 +40,7 @@ struct ParameterOverrides {
   std::optional<double> dhat, fit_dhat, w_contact, w_fit, w_pos, eps_tol, voxel_size,
       ccd_min_separation_ratio;
   std::optional<int> max_newton_iterations, max_al_rounds, fit_samples;
-  std::optional<bool> self_contact;
+  std::optional<bool> self_contact, self_contact_everywhere;
 
   void apply_to(PipelineParameters& parameters) const;
 };

@@ -27,6 +27,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"fit_samples_per_face", p.solver.fit_samples_per_face},
         {"ccd_min_separation_ratio", p.solver.ccd.min_separation_ratio},
         {"self_contact", p.solver.self_contact},
+        {"self_contact_everywhere", p.solver.self_contact_everywhere},
         {"lattice", r.lattice},
         {"units", "normalized scene units (avatar about 2 tall)"}}},
       {"seconds",
@@ -63,6 +64,14 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"modelled",
        {{"terms", r.terms},
         {"self_contact", r.self_contact},
+        {"self_contact_where", !r.self_contact           ? "nowhere"
+                               : r.self_contact_everywhere ? "everywhere"
+                                                           : "where the garment can fold onto itself"},
+        {"fold_free_face_fraction",
+         {{"inflate", r.inflate_fold_free},
+          {"fit", r.fit_fold_free},
+          {"meaning", "mean share of garment faces per step in regions proven unable to fold "
+                      "onto themselves, whose self pairs were left out"}}},
         {"garment_vertices", r.garment_vertices},
         {"garment_faces", r.garment_faces},
         {"fit_faces", r.fit_faces},

@@ -45,6 +45,9 @@ struct RetargetReport {
   // What was modelled, and why.
   std::vector<std::string> terms;
   bool self_contact = true;
+  bool self_contact_everywhere = false;
+  /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
+  double inflate_fold_free = 0.0, fit_fold_free = 0.0;
   int garment_vertices = 0;
   int garment_faces = 0;
   int fit_faces = 0;

@@ -213,6 +213,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const std::vector<bool> fit_faces = fit_face_mask(normalized.garment, scene.no_fit);
   report.fit_faces = static_cast<int>(std::count(fit_faces.begin(), fit_faces.end(), true));
   report.self_contact = parameters.solver.self_contact;
+  report.self_contact_everywhere = parameters.solver.self_contact_everywhere;
   report.terms = {"surface", "contact"};
   if (has_skeletons) report.terms.push_back("position");
   report.terms.push_back("fit");
@@ -265,6 +266,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   report.al_rounds = inflation.rounds;
   report.al_resets = inflation.resets;
   report.inflate_newton_iterations = inflation.newton_iterations;
+  report.inflate_fold_free = inflation.fold_free_fraction;
   report.inflate_status = to_string(inflation.status);
   report.seconds.inflate = stage.seconds();
   progress.log("inflate", "{} ({:.2f} s)", inflation.message, report.seconds.inflate);
@@ -281,6 +283,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   if (fit.solve.status != SolverStatus::kNonFiniteEnergy && widen_scope_if_left(fit.garment, "fit", "fit"))
     fit = fit_garment(problem_scene, inflation.garment, parameters.solver, on_newton);
   report.fit_newton_iterations = fit.solve.iterations;
+  report.fit_fold_free = fit.fold_free_fraction;
   report.fit_status = status_name(fit.solve.status);
   report.seconds.fit = stage.seconds();
   progress.log("fit", "{} after {} Newton steps ({:.2f} s)", fit.solve.message, fit.solve.iterations,
