@@ -23,7 +23,9 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
   GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
   const DofLayout& layout = problem.layout();
   AvatarConstraint& al = problem.constraint();
-  ProjectedNewton newton(parameters.newton);
+  NewtonOptions newton_options = parameters.newton;
+  newton_options.max_step_length = parameters.inflation_step_length;
+  ProjectedNewton newton(newton_options);
 
   const Eigen::VectorXd initial = layout.pack(0.0, scene.garment.vertices);
   Eigen::VectorXd x = initial;

@@ -1,5 +1,7 @@
 #include "core/inflation/garment_problem.hpp"
 
+#include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "core/mesh/boundary_loops.hpp"
@@ -67,6 +69,29 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
                  parameters.fit_samples_per_face, layout_);
   constraint_.displacement_sq = (scene.avatar.vertices - scene.shrunk_avatar).squaredNorm();
   constraint_.lambda1 = parameters.initial_lambda1;
+}
+
+std::vector<double> GarmentProblem::loop_offsets(const Eigen::VectorXd& x) const {
+  std::vector<double> offsets;
+  if (!position_) return offsets;
+  const auto V = layout_.garment(x);
+  const double t = layout_.t(x);
+  std::map<int, const PositionEnergy::Element*> element_of;
+  for (const PositionEnergy::Element& element : position_->elements()) element_of[element.vertex] = &element;
+  for (const LoopBone& loop : loop_bones_) {
+    double sum = 0.0;
+    int count = 0;
+    for (int v : loop.vertices) {
+      const auto it = element_of.find(v);
+      if (it == element_of.end()) continue;  // a bone of zero length holds nothing
+      PositionEnergy::LocalVector q;
+      q << V.row(v).transpose(), t;
+      sum += 2.0 * PositionEnergy::element_value(*it->second, q);  // (s - s_rest)^2
+      ++count;
+    }
+    offsets.push_back(count > 0 ? std::sqrt(sum / count) : 0.0);
+  }
+  return offsets;
 }
 
 double GarmentProblem::value(const Eigen::VectorXd& x) {

@@ -56,6 +56,9 @@ class GarmentProblem : public Problem {
   const ContactEnergy& contact() const { return contact_; }
   /// Boundary loops held by L_pos (empty without skeletons).
   const std::vector<LoopBone>& loop_bones() const { return loop_bones_; }
+  /// Per loop of loop_bones(), the root mean square over its vertices of s(t, x) - s_rest
+  /// at x: how far (in lengths of its bone) the loop sits from its place along the bone.
+  std::vector<double> loop_offsets(const Eigen::VectorXd& x) const;
 
   /// Whether snapping t to 1 (avatar A(t) → A, garment still) is collision free by CCD.
   bool is_valid_snapping(const Eigen::VectorXd& x);

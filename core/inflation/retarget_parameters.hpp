@@ -25,7 +25,8 @@ struct RetargetParameters {
   bool self_contact_everywhere = false;
 
   /// eps_tol, step tolerance, iteration cap of each solve; a Newton step moves no vertex
-  /// (garment, or avatar through t) more than 0.1 units at once; new contact pairs up to
+  /// (garment, or avatar through t) more than 0.1 units at once (in the fit; the inflation
+  /// has its own cap below); new contact pairs up to
   /// 0.1% of the Hessian's pattern reuse its symbolic analysis.
   NewtonOptions newton = [] {
     NewtonOptions options;
@@ -33,6 +34,11 @@ struct RetargetParameters {
     options.pattern_slack = 0.001;
     return options;
   }();
+  /// The inflation's cap on a Newton step's vertex motion (instead of newton's). Small
+  /// steps keep the garment following the growing avatar rather than jumping ahead of it:
+  /// at 0.1 the puffer's collar caught on the goblin's head in some runs and ended 11% of
+  /// its bone away from its place; at 0.05 and 0.025 it never did, and 0.025 was fastest.
+  double inflation_step_length = 0.025;
   CcdOptions ccd;
 
   // Augmented Lagrangian (Algorithm 1).

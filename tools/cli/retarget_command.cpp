@@ -62,6 +62,9 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-al-rounds", o.max_al_rounds, "Cap on augmented-Lagrangian rounds")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--inflation-step", o.inflation_step_length,
+                  "Largest vertex motion of one inflation step (normalized scene units)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--ccd-separation", o.ccd_min_separation_ratio,
                   "Fraction of each pair's gap that a CCD-bounded step keeps")
       ->check(CLI::Range(1e-6, 0.99));

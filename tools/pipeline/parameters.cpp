@@ -51,6 +51,7 @@ void ParameterOverrides::apply_to(PipelineParameters& p) const {
   }
   if (voxel_size) p.voxel_size = *voxel_size;
   if (ccd_min_separation_ratio) s.ccd.min_separation_ratio = *ccd_min_separation_ratio;
+  if (inflation_step_length) s.inflation_step_length = *inflation_step_length;
   if (max_newton_iterations) s.newton.max_iterations = *max_newton_iterations;
   if (max_al_rounds) s.max_al_rounds = *max_al_rounds;
   if (fit_samples) s.fit_samples_per_face = *fit_samples;

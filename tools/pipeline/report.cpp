@@ -28,6 +28,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"ccd_min_separation_ratio", p.solver.ccd.min_separation_ratio},
         {"self_contact", p.solver.self_contact},
         {"self_contact_everywhere", p.solver.self_contact_everywhere},
+        {"inflation_step_length", p.solver.inflation_step_length},
         {"lattice", r.lattice},
         {"units", "normalized scene units (avatar about 2 tall)"}}},
       {"seconds",
@@ -57,6 +58,10 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"p95", r.fit_error.p95},
         {"samples", r.fit_error.samples},
         {"units", "avatar file units"}}},
+      {"position",
+       {{"loop_offsets", r.loop_offsets},
+        {"meaning", "per boundary loop held along its bone: RMS offset from its place on the "
+                    "bone, in lengths of the bone"}}},
       {"distortion",
        {{"mean_edge_change", r.distortion.mean_edge_change},
         {"max_edge_change", r.distortion.max_edge_change},

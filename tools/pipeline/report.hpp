@@ -48,6 +48,9 @@ struct RetargetReport {
   bool self_contact_everywhere = false;
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double inflate_fold_free = 0.0, fit_fold_free = 0.0;
+  /// Per boundary loop held by L_pos: RMS offset from its place along its bone, in bone
+  /// lengths, on the written garment.
+  std::vector<double> loop_offsets;
   int garment_vertices = 0;
   int garment_faces = 0;
   int fit_faces = 0;

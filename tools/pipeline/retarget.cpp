@@ -37,6 +37,10 @@ constexpr double kFitBand = 0.1;
 
 /// Newton progress lines: the first steps, then every tenth.
 constexpr int kNewtonLogEvery = 10;
+/// A boundary loop further than this (in lengths of its bone) from its place along the bone
+/// on the written garment is reported: the loops of a fitted garment sit within a few
+/// thousandths of theirs.
+constexpr double kLoopOffsetWarning = 0.03;
 
 /// Rejects a garment that crosses itself as given (`self`, found on its normalized copy):
 /// no solver output could be certified.
@@ -304,6 +308,16 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     // minimum_distance finds the contact pairs at x first; the contact term needs them.
     report.min_distance = final_problem.minimum_distance(x);
     report.final_energies = final_problem.term_values(x);
+    report.loop_offsets = final_problem.loop_offsets(x);
+    for (std::size_t loop = 0; loop < report.loop_offsets.size(); ++loop) {
+      if (report.loop_offsets[loop] <= kLoopOffsetWarning) continue;
+      const std::string warning = fmt::format(
+          "boundary loop {} ({} vertices) ends {:.0f}% of its bone's length from its place along "
+          "the bone: it may be caught on the avatar and the garment stretched around it",
+          loop, final_problem.loop_bones()[loop].vertices.size(), 100.0 * report.loop_offsets[loop]);
+      progress.log("warning", "{}", warning);
+      report.warnings.push_back(warning);
+    }
     const auto& faces = normalized.garment.faces;
     double rest_area = 0.0;
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {

@@ -93,6 +93,9 @@ Outcome retarget_transformed(const ScaleScene& scene, double scale, const Vector
   INFO(tag << ": " << result.message);
   REQUIRE(result.status == RetargetStatus::kCertified);
   test::check_outputs_finite(out);
+  // With skeletons, every boundary loop ends at its place along its bone.
+  CHECK(result.report.loop_offsets.empty() == options.inputs.source_skeleton.empty());
+  for (const double offset : result.report.loop_offsets) CHECK(offset < 1e-3);
   const auto back = [&](const std::string& path) -> MatrixX3d {
     return (read_obj(path).positions.rowwise() - shift.transpose()) / scale;
   };

@@ -135,6 +135,12 @@ TEST_CASE("retarget of the bundled scene is certified and faithful to the input 
     CHECK(report["modelled"]["avatar_faces_modelled"].get<int>() <=
           report["modelled"]["avatar_faces_total"].get<int>());
     CHECK(report["modelled"]["fit_faces"].get<int>() < report["modelled"]["garment_faces"].get<int>());
+    CHECK(report["modelled"]["self_contact_where"] == "where the garment can fold onto itself");
+    for (const char* stage : {"inflate", "fit"}) {
+      const double share = report["modelled"]["fold_free_face_fraction"][stage].get<double>();
+      CHECK((share >= 0.0 && share <= 1.0));
+    }
+    CHECK(report["position"]["loop_offsets"].empty());  // no skeletons: no loops held
     for (const auto& [term, value] : report["energies"].items()) {
       CAPTURE(term);
       CHECK(std::isfinite(value.get<double>()));
