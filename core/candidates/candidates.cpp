@@ -220,7 +220,7 @@ struct CandidateFinder::SelfSearch {
   std::vector<std::vector<int>> points, edges;  ///< per group, ids it owns
   std::vector<RefittedTree> point_trees, face_trees, edge_trees;
   std::vector<char> fold_free;   ///< per region, the last query's verdict
-  std::vector<Box> extent;       ///< per region, the last query's box; then the loose points'
+  std::vector<Box> extent;       ///< per region, the last query's box
   std::size_t fold_free_faces = 0;
 
   SelfSearch(const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment)
@@ -318,7 +318,7 @@ void CandidateFinder::self_pairs(const std::vector<Box>& point_boxes, const std:
     for (std::size_t i = 0; i < ids.size(); ++i) out[i] = boxes[static_cast<std::size_t>(ids[i])];
     return out;
   };
-  search.extent.assign(regions.regions.size() + 1, Box());
+  search.extent.assign(regions.regions.size(), Box());
   std::vector<Box> group_extent(groups);
   tbb::parallel_for(std::size_t{0}, groups, [&](std::size_t g) {
     Box& box = group_extent[g];
