@@ -68,12 +68,12 @@ void ContactEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
   gradient = jacobian_transpose_ * barrier_.gradient(candidates_, stacked(V, t));
 }
 
-Eigen::SparseMatrix<double> ContactEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                                   bool project_psd) const {
+const Eigen::SparseMatrix<double>& ContactEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
+                                                          double t, bool project_psd) const {
   const Eigen::SparseMatrix<double> H = barrier_.hessian(candidates_, stacked(V, t), project_psd);
-  Eigen::SparseMatrix<double> Hx = jacobian_transpose_ * (H * jacobian_);
-  Hx.makeCompressed();
-  return Hx;
+  hessian_ = jacobian_transpose_ * (H * jacobian_);
+  hessian_.makeCompressed();
+  return hessian_;
 }
 
 double ContactEnergy::minimum_distance(const Eigen::Ref<const MatrixX3d>& V, double t) const {

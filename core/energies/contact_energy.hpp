@@ -5,6 +5,7 @@
 #include "core/candidates/candidates.hpp"
 #include "core/ccd/ccd.hpp"
 #include "core/energies/dof_layout.hpp"
+#include "core/energies/energy_term.hpp"
 #include "core/potentials/barrier_potential.hpp"
 
 namespace gr {
@@ -16,7 +17,7 @@ namespace gr {
 /// H_V is). Keeps the current candidate set: pairs within dhat of the current point, or
 /// after `update_swept_candidates`, pairs that come within dhat anywhere along a motion.
 /// Not safe for concurrent use (it keeps the candidates and a stacked-vertex buffer).
-class ContactEnergy {
+class ContactEnergy : public EnergyTerm {
  public:
   /// @param mesh garment and avatar stacked (the avatar's rows in A's order).
   /// @param garment_rest rest garment (#Vg×3), with `avatar_end` the barrier's rest shape
@@ -51,12 +52,15 @@ class ContactEnergy {
                                  const Eigen::Ref<const MatrixX3d>& V1, double t1,
                                  const CcdOptions& ccd);
 
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const;
-  /// Gradient over x (layout.dof_count()), overwritten.
-  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t, Eigen::VectorXd& gradient) const;
-  /// Hessian over x, pair blocks projected to PSD when `project_psd`.
-  Eigen::SparseMatrix<double> hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                      bool project_psd = true) const;
+  const char* name() const override { return "contact"; }
+  /// Over the current candidates.
+  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
+  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
+                Eigen::VectorXd& gradient) const override;
+  /// Pair blocks projected to PSD when `project_psd`; the pattern follows the candidates.
+  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
+                                             bool project_psd) const override;
+  bool fixed_pattern() const override { return false; }
   /// Smallest distance over the current candidates (+inf when there are none).
   double minimum_distance(const Eigen::Ref<const MatrixX3d>& V, double t) const;
 
@@ -69,6 +73,7 @@ class ContactEnergy {
   Eigen::SparseMatrix<double> jacobian_, jacobian_transpose_;  ///< dV/dx, 3#V × #dofs
   Candidates candidates_;
   mutable MatrixX3d stacked_;
+  mutable Eigen::SparseMatrix<double> hessian_;  ///< the last hessian() result
 };
 
 }  // namespace gr

@@ -36,16 +36,28 @@ TriangleQuadrature TriangleQuadrature::with_points(int count) {
   return rule;
 }
 
+std::vector<bool> fit_face_mask(const Eigen::Ref<const MatrixX3i>& faces, int vertex_count,
+                                const std::vector<int>& no_fit) {
+  std::vector<bool> listed(static_cast<std::size_t>(std::max(vertex_count, 0)), false);
+  for (const int v : no_fit)
+    if (v >= 0 && v < vertex_count) listed[static_cast<std::size_t>(v)] = true;
+  std::vector<bool> fits(static_cast<std::size_t>(faces.rows()), true);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    fits[static_cast<std::size_t>(f)] = !(listed[static_cast<std::size_t>(faces(f, 0))] &&
+                                          listed[static_cast<std::size_t>(faces(f, 1))] &&
+                                          listed[static_cast<std::size_t>(faces(f, 2))]);
+  return fits;
+}
+
 FitEnergy::FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit,
                      const DistanceField& field, int samples_per_face, const DofLayout& layout)
     : field_(&field), quadrature_(TriangleQuadrature::with_points(samples_per_face)) {
-  std::vector<char> listed(static_cast<std::size_t>(rest.vertices.rows()), 0);
-  for (int v : no_fit)
-    if (v >= 0 && v < rest.vertices.rows()) listed[static_cast<std::size_t>(v)] = 1;
+  const std::vector<bool> fits =
+      fit_face_mask(rest.faces, static_cast<int>(rest.vertices.rows()), no_fit);
   std::vector<StencilDofs<kStencilSize>> dofs;
   for (int f = 0; f < rest.faces.rows(); ++f) {
+    if (!fits[static_cast<std::size_t>(f)]) continue;
     const std::array<int, 3> face = {rest.faces(f, 0), rest.faces(f, 1), rest.faces(f, 2)};
-    if (listed[face[0]] && listed[face[1]] && listed[face[2]]) continue;
     const Vector3d a = rest.vertices.row(face[0]).transpose();
     const Vector3d b = rest.vertices.row(face[1]).transpose();
     const Vector3d c = rest.vertices.row(face[2]).transpose();
@@ -111,7 +123,7 @@ double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, const 
   return value;
 }
 
-double FitEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
+double FitEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
   // Line-search points are new each time: sampled for the value alone, not kept.
   const Sample* samples = has_samples_at(V) ? samples_.data() : nullptr;
   const std::size_t per_face = quadrature_.weights.size();
@@ -121,10 +133,11 @@ double FitEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
   });
 }
 
-double FitEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const {
+void FitEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
+                         Eigen::VectorXd& gradient) const {
   const Sample* samples = samples_at(V).data();
   const std::size_t per_face = quadrature_.weights.size();
-  return assembly_.gradient(
+  assembly_.gradient(
       [&](int f, LocalVector& g) {
         return element(f, V, samples + static_cast<std::size_t>(f) * per_face, &g, nullptr, false);
       },
@@ -132,7 +145,7 @@ double FitEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd
 }
 
 const Eigen::SparseMatrix<double>& FitEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                      bool project_psd) const {
+                                                      double, bool project_psd) const {
   const Sample* samples = samples_at(V).data();
   const std::size_t per_face = quadrature_.weights.size();
   // The per-point projection already makes each block PSD; the assembly need not redo it.

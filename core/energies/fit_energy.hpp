@@ -7,6 +7,7 @@
 
 #include "core/energies/distance_field.hpp"
 #include "core/energies/dof_layout.hpp"
+#include "core/energies/energy_term.hpp"
 #include "core/energies/stencil_assembly.hpp"
 
 namespace gr {
@@ -21,6 +22,11 @@ struct TriangleQuadrature {
   static TriangleQuadrature with_points(int count);
 };
 
+/// Per face of `faces` (#F×3), whether it fits: false for a no-fit face, one whose three
+/// vertices are all in `no_fit` (vertex ids; ids outside [0, vertex_count) are ignored).
+std::vector<bool> fit_face_mask(const Eigen::Ref<const MatrixX3i>& faces, int vertex_count,
+                                const std::vector<int>& no_fit);
+
 /// L_fit (unweighted): sum over fit faces f and quadrature points p of
 /// rest_area_f · weight_p · max(phi(p), 0)^2, phi the avatar's signed distance (positive
 /// outside). A face is no-fit, and left out, when its three vertices are all listed.
@@ -32,7 +38,7 @@ struct TriangleQuadrature {
 /// samples (value, gradient, Hessian of phi) taken for one are kept for the other, and for
 /// the value, while the positions stay the same (the solver asks for all three at each
 /// Newton iterate). Not safe for concurrent use.
-class FitEnergy {
+class FitEnergy : public EnergyTerm {
  public:
   static constexpr int kStencilSize = 9;
   using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
@@ -49,10 +55,13 @@ class FitEnergy {
   /// Number of faces that fit (not no-fit).
   int fit_face_count() const { return static_cast<int>(faces_.size()); }
 
-  double value(const Eigen::Ref<const MatrixX3d>& V) const;
-  double gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const;
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                             bool project_psd = true) const;
+  const char* name() const override { return "fit"; }
+  /// At garment positions V (#Vg×3); t plays no part.
+  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
+  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
+                Eigen::VectorXd& gradient) const override;
+  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
+                                             bool project_psd) const override;
 
  private:
   /// phi and its derivatives at one quadrature point.

@@ -78,9 +78,9 @@ double PositionEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double t) con
   return assembly_.value([&](int e) { return element_value(elements_[e], gather(e, V, t)); });
 }
 
-double PositionEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                Eigen::VectorXd& gradient) const {
-  return assembly_.gradient(
+void PositionEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
+                              Eigen::VectorXd& gradient) const {
+  assembly_.gradient(
       [&](int e, LocalVector& g) { return element_gradient(elements_[e], gather(e, V, t), g); },
       gradient);
 }

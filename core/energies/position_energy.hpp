@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 
 #include "core/energies/dof_layout.hpp"
+#include "core/energies/energy_term.hpp"
 #include "core/energies/stencil_assembly.hpp"
 #include "core/skeleton/loop_bones.hpp"
 
@@ -16,7 +17,7 @@ namespace gr {
 /// line; the energy is 1/2 sum (s(t, x) - s_rest)^2, s_rest taken at t = 0 on the initial
 /// garment (so it is zero there). Dimensionless; the caller multiplies by w_pos.
 /// Derivatives are with respect to the vertex and, when the layout frees it, t.
-class PositionEnergy {
+class PositionEnergy : public EnergyTerm {
  public:
   static constexpr int kStencilSize = 4;  ///< x, y, z of the vertex, then t
   using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
@@ -35,10 +36,12 @@ class PositionEnergy {
 
   const std::vector<Element>& elements() const { return elements_; }
 
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const;
-  double gradient(const Eigen::Ref<const MatrixX3d>& V, double t, Eigen::VectorXd& gradient) const;
+  const char* name() const override { return "position"; }
+  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
+  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
+                Eigen::VectorXd& gradient) const override;
   const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                             bool project_psd = true) const;
+                                             bool project_psd) const override;
 
   /// The bone parameter s(t, x) and, when asked, its gradient and Hessian in (x, t).
   static double bone_parameter(const MovingBone& bone, const LocalVector& q, LocalVector* gradient,

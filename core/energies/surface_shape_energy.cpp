@@ -189,19 +189,19 @@ void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVect
   h = expand_reduced(reduced);
 }
 
-double SurfaceShapeEnergy::value(const Eigen::Ref<const MatrixX3d>& V) const {
+double SurfaceShapeEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
   return assembly_.value([&](int e) { return element_value(elements_[e], gather(e, V)); });
 }
 
-double SurfaceShapeEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V,
-                                    Eigen::VectorXd& gradient) const {
-  return assembly_.gradient(
+void SurfaceShapeEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
+                                  Eigen::VectorXd& gradient) const {
+  assembly_.gradient(
       [&](int e, LocalVector& g) { return element_gradient(elements_[e], gather(e, V), g); },
       gradient);
 }
 
 const Eigen::SparseMatrix<double>& SurfaceShapeEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                               bool project_psd) const {
+                                                               double, bool project_psd) const {
   // Projected in element_hessian, on the 9 edge-vector coordinates.
   return assembly_.hessian(
       [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V), h, project_psd); },

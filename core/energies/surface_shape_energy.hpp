@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 
 #include "core/energies/dof_layout.hpp"
+#include "core/energies/energy_term.hpp"
 #include "core/energies/stencil_assembly.hpp"
 
 namespace gr {
@@ -21,7 +22,7 @@ namespace gr {
 /// so the Hessian is exact and cheap. The energy is zero for any rigid motion of the rest
 /// shape; it is not invariant under uniform scaling (the normal scales quadratically).
 /// Units: area × length^2 in normalized scene units.
-class SurfaceShapeEnergy {
+class SurfaceShapeEnergy : public EnergyTerm {
  public:
   static constexpr int kStencilSize = 12;
   using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
@@ -43,17 +44,20 @@ class SurfaceShapeEnergy {
   const std::vector<Element>& elements() const { return elements_; }
 
   /// Energy at garment positions V (#Vg×3).
-  double value(const Eigen::Ref<const MatrixX3d>& V) const;
+  const char* name() const override { return "surface"; }
+  /// Energy at garment positions V (#Vg×3); t plays no part.
+  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
   /// Gradient over x (layout.dof_count()), overwritten; returns the energy.
-  double gradient(const Eigen::Ref<const MatrixX3d>& V, Eigen::VectorXd& gradient) const;
+  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
+                Eigen::VectorXd& gradient) const override;
   /// Hessian over x. With `project_psd` each element's Hessian is made PSD in closed form:
   /// it is JᵀJ (Gauss–Newton, PSD) plus a second-order part linear in the residual, whose
   /// spectrum is known (see element_hessian), so the element keeps JᵀJ plus that part's
   /// positive half. The result lies above the exact Hessian by a rank-two term no larger
   /// than the second-order part. Where that part is below 1e-3 of JᵀJ (Frobenius norms)
   /// it is dropped.
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                             bool project_psd = true) const;
+  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
+                                             bool project_psd) const override;
 
   /// Per-element pieces on local coordinates q = (x0, x1, x2, x3).
   static double element_value(const Element& element, const LocalVector& q);

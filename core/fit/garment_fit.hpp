@@ -1,5 +1,9 @@
 #pragma once
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "core/inflation/garment_problem.hpp"
 
 namespace gr {
@@ -9,6 +13,19 @@ struct FitResult {
   MatrixX3d garment;    ///< #Vg×3, the last accepted point whatever the status
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free_fraction = 0.0;
+
+  // Measured on the problem the fit minimized, at the returned garment.
+  /// The terms it modelled (GarmentProblem::term_names).
+  std::vector<std::string> terms;
+  /// Each term's weighted value (GarmentProblem::term_values).
+  std::map<std::string, double> energies;
+  /// Smallest garment–avatar or garment–garment distance among pairs within the fit's
+  /// barrier support, normalized units (+inf when none is that close).
+  double min_distance = 0.0;
+  /// Per boundary loop held by L_pos, its offset from its place along its bone (in bone
+  /// lengths) and its vertex count; empty without skeletons.
+  std::vector<double> loop_offsets;
+  std::vector<int> loop_sizes;
 };
 
 /// Step 3: t fixed at 1, one projected Newton solve on the garment vertices with L_surf

@@ -1,5 +1,8 @@
 #pragma once
 
+#include "core/energies/dof_layout.hpp"
+#include "core/energies/energy_term.hpp"
+
 namespace gr {
 
 /// The augmented Lagrangian on the constraint t = 1, written on the avatar's vertices: the
@@ -21,6 +24,41 @@ struct AvatarConstraint {
   double second_derivative() const { return lambda1 * displacement_sq; }
   /// Algorithm 1, line 17.
   void update_multiplier(double t) { lambda2 += lambda1 * (1.0 - t); }
+};
+
+/// The augmented Lagrangian as a term of the inflation's objective (weight 1): it depends on
+/// t alone, so its gradient and Hessian have one entry, at t. Reads `constraint`, which the
+/// augmented-Lagrangian loop updates between solves and which must outlive the term.
+/// @pre layout.t_free.
+class AvatarConstraintTerm : public EnergyTerm {
+ public:
+  AvatarConstraintTerm(const AvatarConstraint& constraint, const DofLayout& layout)
+      : layout_(layout), constraint_(constraint) {
+    hessian_.resize(layout.dof_count(), layout.dof_count());
+    hessian_.insert(layout.t_index(), layout.t_index()) = 0.0;
+    hessian_.makeCompressed();
+  }
+
+  const char* name() const override { return "augmented_lagrangian"; }
+  double value(const Eigen::Ref<const MatrixX3d>&, double t) const override {
+    return constraint_.value(t);
+  }
+  void gradient(const Eigen::Ref<const MatrixX3d>&, double t,
+                Eigen::VectorXd& gradient) const override {
+    gradient.setZero(layout_.dof_count());
+    gradient[layout_.t_index()] = constraint_.derivative(t);
+  }
+  /// Convex in t, so the same with or without projection.
+  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>&, double,
+                                             bool) const override {
+    hessian_.valuePtr()[0] = constraint_.second_derivative();
+    return hessian_;
+  }
+
+ private:
+  DofLayout layout_;
+  const AvatarConstraint& constraint_;
+  mutable Eigen::SparseMatrix<double> hessian_;
 };
 
 }  // namespace gr

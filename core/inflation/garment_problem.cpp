@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/mesh/boundary_loops.hpp"
+#include "core/solver/sparse_pattern.hpp"
 
 namespace gr {
 namespace {
@@ -32,43 +33,36 @@ ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters
   return mesh;
 }
 
-/// target += weight · A, where A's pattern is within target's (both compressed, same size).
-void add_within_pattern(const Eigen::SparseMatrix<double>& A, double weight,
-                        Eigen::SparseMatrix<double>& target) {
-  const int* outer = target.outerIndexPtr();
-  const int* inner = target.innerIndexPtr();
-  double* values = target.valuePtr();
-  for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
-    int k = outer[c];
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
-      while (inner[k] < it.index()) ++k;
-      values[k] += weight * it.value();
-    }
-  }
-}
-
 }  // namespace
 
 GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters,
                                Stage stage)
     : stage_(stage),
       parameters_(parameters),
-      layout_(layout_for(checked(scene, stage), stage)),
-      surface_(scene.garment, layout_),
-      contact_(contact_mesh_for(scene, parameters),
-               scene.garment.vertices, scene.shrunk_avatar, scene.avatar.vertices, parameters.dhat,
-               layout_) {
+      layout_(layout_for(checked(scene, stage), stage)) {
+  add_term<SurfaceShapeEnergy>(parameters.w_surf, scene.garment, layout_);
+  contact_ = &add_term<ContactEnergy>(parameters.w_contact, contact_mesh_for(scene, parameters),
+                                      scene.garment.vertices, scene.shrunk_avatar,
+                                      scene.avatar.vertices, parameters.dhat, layout_);
   if (scene.skeletons) {
     const SkeletonMotion& s = *scene.skeletons;
     loop_bones_ = assign_loop_bones(scene.garment.vertices, boundary_loops(scene.garment.faces),
                                     s.source_joints, s.target_joints, s.bones, s.skirt);
-    position_.emplace(scene.garment.vertices, loop_bones_, layout_);
+    position_ = &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_,
+                                          layout_);
   }
   if (stage == Stage::kFit)
-    fit_.emplace(scene.garment, scene.no_fit, *scene.distance_field,
-                 parameters.fit_samples_per_face, layout_);
+    add_term<FitEnergy>(parameters.w_fit, scene.garment, scene.no_fit, *scene.distance_field,
+                        parameters.fit_samples_per_face, layout_);
   constraint_.displacement_sq = (scene.avatar.vertices - scene.shrunk_avatar).squaredNorm();
   constraint_.lambda1 = parameters.initial_lambda1;
+  if (layout_.t_free) add_term<AvatarConstraintTerm>(1.0, constraint_, layout_);
+}
+
+std::vector<std::string> GarmentProblem::term_names() const {
+  std::vector<std::string> names;
+  for (const WeightedTerm& weighted : terms_) names.emplace_back(weighted.term->name());
+  return names;
 }
 
 std::vector<double> GarmentProblem::loop_offsets(const Eigen::VectorXd& x) const {
@@ -97,65 +91,56 @@ std::vector<double> GarmentProblem::loop_offsets(const Eigen::VectorXd& x) const
 double GarmentProblem::value(const Eigen::VectorXd& x) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  double total = parameters_.w_surf * surface_.value(V);
-  total += parameters_.w_contact * contact_.value(V, t);
-  if (position_) total += parameters_.w_pos * position_->value(V, t);
-  if (fit_) total += parameters_.w_fit * fit_->value(V);
-  if (layout_.t_free) total += constraint_.value(t);
+  double total = 0.0;
+  for (const WeightedTerm& weighted : terms_) total += weighted.weight * weighted.term->value(V, t);
   return total;
 }
 
 std::map<std::string, double> GarmentProblem::term_values(const Eigen::VectorXd& x) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  std::map<std::string, double> terms;
-  terms["surface"] = parameters_.w_surf * surface_.value(V);
-  terms["contact"] = parameters_.w_contact * contact_.value(V, t);
-  if (position_) terms["position"] = parameters_.w_pos * position_->value(V, t);
-  if (fit_) terms["fit"] = parameters_.w_fit * fit_->value(V);
-  if (layout_.t_free) terms["augmented_lagrangian"] = constraint_.value(t);
-  return terms;
+  std::map<std::string, double> values;
+  for (const WeightedTerm& weighted : terms_)
+    values[weighted.term->name()] = weighted.weight * weighted.term->value(V, t);
+  return values;
 }
 
 void GarmentProblem::gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  surface_.gradient(V, gradient);
-  gradient *= parameters_.w_surf;
-  contact_.gradient(V, t, term_gradient_);
-  gradient += parameters_.w_contact * term_gradient_;
-  if (position_) {
-    position_->gradient(V, t, term_gradient_);
-    gradient += parameters_.w_pos * term_gradient_;
+  gradient.setZero(layout_.dof_count());
+  for (std::size_t i = 0; i < terms_.size(); ++i) {
+    const WeightedTerm& weighted = terms_[i];
+    if (i == 0) {
+      weighted.term->gradient(V, t, gradient);
+      gradient *= weighted.weight;
+      continue;
+    }
+    weighted.term->gradient(V, t, term_gradient_);
+    gradient += weighted.weight * term_gradient_;
   }
-  if (fit_) {
-    fit_->gradient(V, term_gradient_);
-    gradient += parameters_.w_fit * term_gradient_;
-  }
-  if (layout_.t_free) gradient[layout_.t_index()] += constraint_.derivative(t);
 }
 
 void GarmentProblem::hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian,
                                 bool project_psd) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  const Eigen::SparseMatrix<double>& surface = surface_.hessian(V, project_psd);
-  const Eigen::SparseMatrix<double>* position = position_ ? &position_->hessian(V, t, project_psd) : nullptr;
-  const Eigen::SparseMatrix<double>* fit = fit_ ? &fit_->hessian(V, project_psd) : nullptr;
-  // Every term but contact keeps its pattern: their sum goes into a union pattern made once
-  // (the surface term's pattern holds the whole diagonal, so the t entry exists). With t
+  // The terms whose pattern is fixed are summed into a union pattern made once. With t
   // free its whole row and column are in it too: any garment vertex may come into contact
   // with the moving avatar, and the linear solver should not have to drop those couplings.
+  std::vector<const Eigen::SparseMatrix<double>*> fixed_parts;
+  for (const WeightedTerm& weighted : terms_)
+    if (weighted.term->fixed_pattern())
+      fixed_parts.push_back(&weighted.term->hessian(V, t, project_psd));
   if (fixed_hessian_.size() == 0) {
-    Eigen::SparseMatrix<double> pattern = surface;
-    if (position) pattern += *position;
-    if (fit) pattern += *fit;
+    Eigen::SparseMatrix<double> pattern(layout_.dof_count(), layout_.dof_count());
+    for (const Eigen::SparseMatrix<double>* part : fixed_parts) pattern += *part;
     if (layout_.t_free) {
       std::vector<Eigen::Triplet<double>> t_entries;
-      const int t = layout_.t_index();
+      const int t_index = layout_.t_index();
       for (int dof = 0; dof < layout_.dof_count(); ++dof) {
-        t_entries.emplace_back(t, dof, 0.0);
-        t_entries.emplace_back(dof, t, 0.0);
+        t_entries.emplace_back(t_index, dof, 0.0);
+        t_entries.emplace_back(dof, t_index, 0.0);
       }
       Eigen::SparseMatrix<double> t_pattern(layout_.dof_count(), layout_.dof_count());
       t_pattern.setFromTriplets(t_entries.begin(), t_entries.end());
@@ -165,42 +150,45 @@ void GarmentProblem::hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<do
     fixed_hessian_ = std::move(pattern);
   }
   std::fill(fixed_hessian_.valuePtr(), fixed_hessian_.valuePtr() + fixed_hessian_.nonZeros(), 0.0);
-  add_within_pattern(surface, parameters_.w_surf, fixed_hessian_);
-  if (position) add_within_pattern(*position, parameters_.w_pos, fixed_hessian_);
-  if (fit) add_within_pattern(*fit, parameters_.w_fit, fixed_hessian_);
-  if (layout_.t_free) fixed_hessian_.coeffRef(layout_.t_index(), layout_.t_index()) += constraint_.second_derivative();
-  hessian = fixed_hessian_ + parameters_.w_contact * contact_.hessian(V, t, project_psd);
+  std::size_t part = 0;
+  for (const WeightedTerm& weighted : terms_)
+    if (weighted.term->fixed_pattern())
+      add_within_pattern(*fixed_parts[part++], weighted.weight, fixed_hessian_);
+  hessian = fixed_hessian_;
+  for (const WeightedTerm& weighted : terms_)
+    if (!weighted.term->fixed_pattern())
+      hessian = hessian + weighted.weight * weighted.term->hessian(V, t, project_psd);
   hessian.makeCompressed();
 }
 
 void GarmentProblem::solution_changed(const Eigen::VectorXd& x) {
-  contact_.update_candidates(layout_.garment(x), layout_.t(x));
+  contact_->update_candidates(layout_.garment(x), layout_.t(x));
 }
 
 double GarmentProblem::max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   const Eigen::VectorXd end = x + dx;
-  return contact_.update_swept_candidates(layout_.garment(x), layout_.t(x), layout_.garment(end),
+  return contact_->update_swept_candidates(layout_.garment(x), layout_.t(x), layout_.garment(end),
                                           layout_.t(end), parameters_.ccd);
 }
 
 double GarmentProblem::step_length(const Eigen::VectorXd& dx) const {
   const auto motion = layout_.garment(dx);
   double length = motion.rows() > 0 ? motion.rowwise().norm().maxCoeff() : 0.0;
-  if (layout_.t_free) length = std::max(length, std::abs(layout_.t(dx)) * contact_.max_displacement());
+  if (layout_.t_free) length = std::max(length, std::abs(layout_.t(dx)) * contact_->max_displacement());
   return length;
 }
 
 bool GarmentProblem::is_valid_snapping(const Eigen::VectorXd& x) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  const double step = contact_.update_swept_candidates(V, t, V, 1.0, parameters_.ccd);
-  contact_.update_candidates(V, t);
+  const double step = contact_->update_swept_candidates(V, t, V, 1.0, parameters_.ccd);
+  contact_->update_candidates(V, t);
   return step >= 1.0;
 }
 
 double GarmentProblem::minimum_distance(const Eigen::VectorXd& x) {
-  contact_.update_candidates(layout_.garment(x), layout_.t(x));
-  return contact_.minimum_distance(layout_.garment(x), layout_.t(x));
+  contact_->update_candidates(layout_.garment(x), layout_.t(x));
+  return contact_->minimum_distance(layout_.garment(x), layout_.t(x));
 }
 
 }  // namespace gr

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/energies/contact_energy.hpp"
+#include "core/energies/energy_term.hpp"
 #include "core/energies/distance_field.hpp"
 #include "core/energies/fit_energy.hpp"
 #include "core/energies/position_energy.hpp"
@@ -48,12 +49,14 @@ class GarmentProblem : public Problem {
   ///        distance field, or the fit sample count is not 1, 3 or 6.
   /// @throw InputError when a skirt's skeleton has no recognisable legs.
   GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters, Stage stage);
+  GarmentProblem(const GarmentProblem&) = delete;
+  GarmentProblem& operator=(const GarmentProblem&) = delete;
 
   Stage stage() const { return stage_; }
   const DofLayout& layout() const { return layout_; }
   AvatarConstraint& constraint() { return constraint_; }
   const AvatarConstraint& constraint() const { return constraint_; }
-  const ContactEnergy& contact() const { return contact_; }
+  const ContactEnergy& contact() const { return *contact_; }
   /// Boundary loops held by L_pos (empty without skeletons).
   const std::vector<LoopBone>& loop_bones() const { return loop_bones_; }
   /// Per loop of loop_bones(), the root mean square over its vertices of s(t, x) - s_rest
@@ -69,9 +72,8 @@ class GarmentProblem : public Problem {
   /// Each term's weighted value at x: "surface", "contact", and when modelled "position",
   /// "fit", "augmented_lagrangian". They sum to value(x).
   std::map<std::string, double> term_values(const Eigen::VectorXd& x);
-  /// Whether the problem models each term (for reports).
-  bool models_position() const { return position_.has_value(); }
-  bool models_fit() const { return fit_.has_value(); }
+  /// The names of the modelled terms, in the order they are summed.
+  std::vector<std::string> term_names() const;
 
   int dof_count() const override { return layout_.dof_count(); }
   double value(const Eigen::VectorXd& x) override;
@@ -87,17 +89,31 @@ class GarmentProblem : public Problem {
   double step_length(const Eigen::VectorXd& dx) const override;
 
  private:
+  /// A term of the sum and its weight; the problem owns the term.
+  struct WeightedTerm {
+    double weight;
+    std::unique_ptr<EnergyTerm> term;
+  };
+  /// Appends a term to the sum and returns it.
+  template <typename Term, typename... Args>
+  Term& add_term(double weight, Args&&... args) {
+    auto term = std::make_unique<Term>(std::forward<Args>(args)...);
+    Term& added = *term;
+    terms_.push_back({weight, std::move(term)});
+    return added;
+  }
+
   Stage stage_;
   RetargetParameters parameters_;
   DofLayout layout_;
-  SurfaceShapeEnergy surface_;
-  ContactEnergy contact_;
-  std::vector<LoopBone> loop_bones_;
-  std::optional<PositionEnergy> position_;
-  std::optional<FitEnergy> fit_;
   AvatarConstraint constraint_;
+  /// Every term, summed in this order.
+  std::vector<WeightedTerm> terms_;
+  ContactEnergy* contact_ = nullptr;           ///< in terms_; also bounds steps (CCD)
+  const PositionEnergy* position_ = nullptr;   ///< in terms_ with skeletons
+  std::vector<LoopBone> loop_bones_;
   Eigen::VectorXd term_gradient_;
-  /// Sum of the terms whose Hessian pattern is fixed (all but contact), in their union pattern.
+  /// Sum of the terms whose Hessian pattern is fixed, in their union pattern.
   Eigen::SparseMatrix<double> fixed_hessian_;
 };
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <mutex>
 
+#include "core/solver/sparse_pattern.hpp"
+
 // Thread controls of the dense kernels under CHOLMOD, looked up at run time: present when
 // CHOLMOD is built with OpenMP and the BLAS is OpenBLAS, absent (null) otherwise.
 extern "C" {
@@ -38,25 +40,19 @@ LinearSolver::LinearSolver() {
 
 bool LinearSolver::pad(const Eigen::SparseMatrix<double>& A, Eigen::Index max_dropped) {
   if (padded_.rows() != A.rows() || padded_.cols() != A.cols()) return false;
-  const int* outer = padded_.outerIndexPtr();
-  const int* inner = padded_.innerIndexPtr();
   double* values = padded_.valuePtr();
   std::fill(values, values + padded_.nonZeros(), 0.0);
   std::fill(compensation_.begin(), compensation_.end(), 0.0);
   Eigen::Index dropped = 0;
-  for (Eigen::Index c = 0; c < A.cols(); ++c) {
-    int k = outer[c];
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
-      while (k < outer[c + 1] && inner[k] < it.index()) ++k;
-      if (k < outer[c + 1] && inner[k] == it.index()) {
-        values[k] = it.value();
-        continue;
-      }
-      const std::size_t column = static_cast<std::size_t>(c);
-      if (it.index() == c || diagonal_[column] < 0 || ++dropped > max_dropped) return false;
-      compensation_[column] += std::abs(it.value());
-    }
-  }
+  const bool padded = for_each_entry_in_pattern(
+      A, padded_, [&](int k, double value) { values[k] = value; },
+      [&](Eigen::Index row, Eigen::Index column, double value) {
+        const auto c = static_cast<std::size_t>(column);
+        if (row == column || diagonal_[c] < 0 || ++dropped > max_dropped) return false;
+        compensation_[c] += std::abs(value);
+        return true;
+      });
+  if (!padded) return false;
   if (dropped > 0)
     for (std::size_t c = 0; c < compensation_.size(); ++c)
       if (compensation_[c] != 0.0) values[diagonal_[c]] += compensation_[c];

@@ -99,10 +99,10 @@ int main(int argc, char** argv) {
 
   Eigen::VectorXd g;
   const int repeats = 20;
-  const double value_ms = milliseconds(repeats, [&] { energy.value(V); });
-  const double gradient_ms = milliseconds(repeats, [&] { energy.gradient(V, g); });
+  const double value_ms = milliseconds(repeats, [&] { energy.value(V, 1.0); });
+  const double gradient_ms = milliseconds(repeats, [&] { energy.gradient(V, 1.0, g); });
   Eigen::SparseMatrix<double> H;
-  const double hessian_ms = milliseconds(repeats, [&] { H = energy.hessian(V, true); });
+  const double hessian_ms = milliseconds(repeats, [&] { H = energy.hessian(V, 1.0, true); });
   gr::LinearSolver solver;
   const double shift = 1e-8 * H.diagonal().cwiseAbs().maxCoeff();
   const double first_factor_ms = milliseconds(1, [&] { solver.factorize(H, shift); });

@@ -58,10 +58,10 @@ TEST_CASE("fit energy: zero inside the avatar; the exact value on a flat face", 
   const test::SphereField field(Vector3d(0.25, 0.25, 0.2 - R), R);
   const FitEnergy energy(face, {}, field, 3, DofLayout{3});
   // Constant phi = 0.3 over an area 0.5 face: 0.5 · 0.09.
-  CHECK(energy.value(face.vertices) == Approx(0.045).epsilon(1e-6));
+  CHECK(energy.value(face.vertices, 1.0) == Approx(0.045).epsilon(1e-6));
   MatrixX3d inside = face.vertices;
   inside.col(2).array() -= 0.6;
-  CHECK(energy.value(inside) == 0.0);
+  CHECK(energy.value(inside, 1.0) == 0.0);
 }
 
 TEST_CASE("fit energy: faces with all three vertices listed as no-fit are left out", "[energies][fit]") {
@@ -71,7 +71,7 @@ TEST_CASE("fit energy: faces with all three vertices listed as no-fit are left o
   CHECK(some.fit_face_count() == 6);  // faces (0,1,4) and (0,4,3) are no-fit
   const FitEnergy none(rest, {0, 1, 2, 3, 4, 5, 6, 7, 8}, field, 1, DofLayout{9});
   CHECK(none.fit_face_count() == 0);
-  CHECK(none.value(rest.vertices) == 0.0);
+  CHECK(none.value(rest.vertices, 1.0) == 0.0);
 }
 
 namespace {
@@ -103,26 +103,27 @@ TEST_CASE("fit energy: one sampling per iterate serves gradient, Hessian and val
   moved.col(0).array() += 0.01;
 
   Eigen::VectorXd g;
-  const double from_gradient = cached.gradient(rest.vertices, g);
+  cached.gradient(rest.vertices, 1.0, g);
+  const double from_gradient = cached.value(rest.vertices, 1.0);
   CHECK(field.count == points);
-  const Eigen::SparseMatrix<double> H = cached.hessian(rest.vertices);
-  CHECK(cached.value(rest.vertices) == from_gradient);
+  const Eigen::SparseMatrix<double> H = cached.hessian(rest.vertices, 1.0, true);
+  CHECK(cached.value(rest.vertices, 1.0) == from_gradient);
   CHECK(field.count == points);  // the Hessian and the value reused the gradient's samples
-  const double at_moved = cached.value(moved);
+  const double at_moved = cached.value(moved, 1.0);
   CHECK(field.count == 2 * points);
-  CHECK(cached.value(rest.vertices) == from_gradient);  // a line-search point keeps them
+  CHECK(cached.value(rest.vertices, 1.0) == from_gradient);  // a line-search point keeps them
   CHECK(field.count == 2 * points);
 
   // Same numbers as an energy that samples afresh for each call.
   const FitEnergy fresh(rest, {}, sphere, 3, layout);
   Eigen::VectorXd g_fresh;
-  fresh.gradient(moved, g_fresh);  // sampled at another point first
-  CHECK(fresh.value(rest.vertices) == from_gradient);
-  CHECK(fresh.value(moved) == at_moved);
-  fresh.gradient(rest.vertices, g_fresh);
+  fresh.gradient(moved, 1.0, g_fresh);  // sampled at another point first
+  CHECK(fresh.value(rest.vertices, 1.0) == from_gradient);
+  CHECK(fresh.value(moved, 1.0) == at_moved);
+  fresh.gradient(rest.vertices, 1.0, g_fresh);
   CHECK(g_fresh == g);
-  CHECK((Eigen::MatrixXd(fresh.hessian(rest.vertices)) - Eigen::MatrixXd(H)).norm() == 0.0);
-  const Eigen::SparseMatrix<double> H_moved = cached.hessian(moved);
+  CHECK((Eigen::MatrixXd(fresh.hessian(rest.vertices, 1.0, true)) - Eigen::MatrixXd(H)).norm() == 0.0);
+  const Eigen::SparseMatrix<double> H_moved = cached.hessian(moved, 1.0, true);
   CHECK(field.count == 3 * points);
-  CHECK((Eigen::MatrixXd(fresh.hessian(moved)) - Eigen::MatrixXd(H_moved)).norm() == 0.0);
+  CHECK((Eigen::MatrixXd(fresh.hessian(moved, 1.0, true)) - Eigen::MatrixXd(H_moved)).norm() == 0.0);
 }

@@ -86,7 +86,8 @@ TEST_CASE("position energy: zero at rest, assembled derivatives in (t, Vg) match
     return g;
   };
   Eigen::VectorXd g;
-  CHECK(energy.gradient(layout.garment(x), layout.t(x), g) > 0.0);
+  energy.gradient(layout.garment(x), layout.t(x), g);
+  CHECK(energy.value(layout.garment(x), layout.t(x)) > 0.0);
   CHECK(test::fd_matches(g, test::fd_gradient(f, x), 1e-7));
   const Eigen::MatrixXd H = energy.hessian(layout.garment(x), layout.t(x), false);
   CHECK(test::fd_matches(H, test::fd_hessian(grad, x), 1e-6));
