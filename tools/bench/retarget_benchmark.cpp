@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
       gr::RetargetOptions options;
       options.inputs = scene.paths;
       options.skirt = scene.skirt;
-      options.quality = config.quality;
+      options.quality = gr::parse_quality(config.quality);
       options.overrides = config.overrides;
       options.threads = threads;
       options.quiet = true;

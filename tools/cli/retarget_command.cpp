@@ -23,18 +23,21 @@ int exit_code_for(RetargetStatus status) {
 
 void add_retarget_command(CLI::App& root, int& exit_code) {
   auto options = std::make_shared<RetargetOptions>();
+  // Named on the command line, parsed into the typed options when the command runs.
+  auto shrink_mode = std::make_shared<std::string>();
+  auto quality = std::make_shared<std::string>(to_string(options->quality));
   CLI::App* cmd = root.add_subcommand(
       "retarget", "Refit a garment onto an avatar, then certify the written garment.");
   add_scene_options(*cmd, options->inputs, options->out_dir);
   cmd->add_option("--no-fit", options->inputs.no_fit,
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting");
   cmd->add_flag("--skirt", options->skirt, "Garment is a skirt: add a virtual bone between the legs");
-  cmd->add_option("--shrink", options->shrink_mode,
+  cmd->add_option("--shrink", *shrink_mode,
                   "How to shrink the avatar: levelset (erode along its signed distance) or "
                   "skeleton (collapse onto the source skeleton's bones); default: skeleton when "
                   "skeletons are given, else levelset")
       ->check(CLI::IsMember({"levelset", "skeleton"}));
-  cmd->add_option("--quality", options->quality,
+  cmd->add_option("--quality", *quality,
                   "Speed against accuracy preset: fast, balanced (the paper's settings but a "
                   "barrier stiffness of 1e6) or accurate; the options below override single "
                   "parameters")
@@ -86,7 +89,9 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "OUT/certificate.json (exact check of the written file against the avatar).\n"
       "Exit codes: 0 certified, 1 certification failed, 2 bad input, 3 no valid shrink,\n"
       "4 solver failure, 5 output not writable, 6 internal error.");
-  cmd->callback([options, &exit_code]() {
+  cmd->callback([options, shrink_mode, quality, &exit_code]() {
+    if (!shrink_mode->empty()) options->shrink_mode = parse_shrink_mode(*shrink_mode);
+    options->quality = parse_quality(*quality);
     const RetargetResult result = run_retarget(*options);
     std::printf("%s\n", result.message.c_str());
     if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());

@@ -29,11 +29,12 @@ ProgressCallback stderr_progress() {
 void add_shrink_command(CLI::App& root, int& exit_code) {
   auto options = std::make_shared<ShrinkRunOptions>();
   auto quiet = std::make_shared<bool>(false);
+  auto mode = std::make_shared<std::string>(to_string(options->mode));
   CLI::App* cmd = root.add_subcommand(
       "shrink", "Shrink the avatar until it is certified free of the garment; write it over "
                 "the garment (DIR/shrunk_avatar.obj) with DIR/report.json.");
   add_scene_options(*cmd, options->inputs, options->out_dir);
-  cmd->add_option("--mode", options->mode, "levelset: erode along the signed distance; "
+  cmd->add_option("--mode", *mode, "levelset: erode along the signed distance; "
                                            "skeleton: collapse onto the source skeleton")
       ->check(CLI::IsMember({"levelset", "skeleton"}))
       ->capture_default_str();
@@ -42,8 +43,9 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--quiet", *quiet, "No progress on stderr");
-  cmd->callback([options, quiet, &exit_code]() {
+  cmd->callback([options, quiet, mode, &exit_code]() {
     if (!*quiet) options->progress = stderr_progress();
+    options->mode = parse_shrink_mode(*mode);
     const ShrinkRunResult result = run_shrink(*options);
     std::printf("%s\n", result.message.c_str());
     if (result.found) std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());

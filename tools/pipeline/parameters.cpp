@@ -1,37 +1,52 @@
 #include "tools/pipeline/parameters.hpp"
 
 #include <cmath>
-#include <stdexcept>
+#include <string>
+
+#include "core/common/errors.hpp"
 
 namespace gr {
 
 double energy_tolerance_for(double eps_tol) { return 10.0 * std::sqrt(eps_tol); }
 
-PipelineParameters parameters_for_quality(const std::string& quality) {
+const char* to_string(Quality quality) {
+  switch (quality) {
+    case Quality::kFast: return "fast";
+    case Quality::kBalanced: return "balanced";
+    case Quality::kAccurate: return "accurate";
+  }
+  return "unknown";
+}
+
+Quality parse_quality(const std::string& name) {
+  for (const Quality quality : {Quality::kFast, Quality::kBalanced, Quality::kAccurate})
+    if (name == to_string(quality)) return quality;
+  throw InputError("", 0, "unknown quality '" + name + "' (fast, balanced or accurate)");
+}
+
+PipelineParameters parameters_for_quality(Quality quality) {
   PipelineParameters p;
   RetargetParameters& s = p.solver;
-  if (quality == "fast") {
+  if (quality == Quality::kFast) {
     s.newton.gradient_tolerance = 1e-5;
     s.newton.step_tolerance = 1e-4;
     // A cap on time: the fit is still improving at 80 steps (it levels off near 110).
     s.newton.max_iterations = 80;
     s.fit_samples_per_face = 1;
     p.voxel_size = 0.02;
-  } else if (quality == "balanced") {
+  } else if (quality == Quality::kBalanced) {
     s.newton.gradient_tolerance = 1e-6;
     s.newton.step_tolerance = 1e-5;
     s.newton.max_iterations = 400;
     s.fit_samples_per_face = 3;
     p.voxel_size = 0.01;
-  } else if (quality == "accurate") {
+  } else {
     s.newton.gradient_tolerance = 1e-8;
     s.newton.step_tolerance = 1e-6;
     s.newton.max_iterations = 1000;
     s.fit_samples_per_face = 6;
     s.fit_dhat = 0.5 * s.dhat;
     p.voxel_size = 0.005;
-  } else {
-    throw std::invalid_argument("unknown quality '" + quality + "' (fast, balanced, accurate)");
   }
   s.newton.energy_tolerance = energy_tolerance_for(s.newton.gradient_tolerance);
   s.w_contact = kPresetBarrierStiffness;

@@ -22,12 +22,20 @@ struct PipelineParameters {
 /// with a mean fit error of 1.22e-4 against 1.09e-4.
 constexpr double kPresetBarrierStiffness = 1e6;
 
-/// The parameters of a preset: "fast", "balanced" (the paper's weights and dhat, with the
-/// barrier stiffness above) or "accurate". Every preset keeps the certificate; they differ
+/// Speed against accuracy presets.
+enum class Quality { kFast, kBalanced, kAccurate };
+
+/// "fast", "balanced" or "accurate".
+const char* to_string(Quality quality);
+/// The preset named `name` ("fast", "balanced" or "accurate").
+/// @throw InputError for any other name.
+Quality parse_quality(const std::string& name);
+
+/// The parameters of a preset: fast, balanced (the paper's weights and dhat, with the
+/// barrier stiffness above) or accurate. Every preset keeps the certificate; they differ
 /// in tolerances, grid resolution, fit quadrature and, for accurate, a fit barrier half as
 /// thick (fit_dhat), which lets the garment settle closer.
-/// @throw std::invalid_argument for any other name.
-PipelineParameters parameters_for_quality(const std::string& quality);
+PipelineParameters parameters_for_quality(Quality quality);
 
 /// The Newton solver's relative energy-decrease tolerance (over its window of steps) that
 /// goes with a gradient tolerance eps_tol: 10 sqrt(eps_tol), so 10% for the fast preset's

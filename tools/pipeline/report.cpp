@@ -9,7 +9,7 @@ nlohmann::json to_json(const RetargetReport& r) {
   const auto& p = r.parameters;
   json report = {
       {"tool", {{"name", "garment-retarget"}, {"version", GR_VERSION}}},
-      {"quality", r.quality},
+      {"quality", to_string(r.quality)},
       {"parameters",
        {{"dhat", p.solver.dhat},
         {"fit_dhat", p.solver.fit_support()},
@@ -41,7 +41,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"certify", r.seconds.certify},
         {"total", r.seconds.total}}},
       {"shrink",
-       {{"mode", r.shrink_mode},
+       {{"mode", to_string(r.shrink_mode)},
         {"depth", r.shrink_depth},
         {"medial_vertices", r.shrink_medial_vertices}}},
       {"inflate",

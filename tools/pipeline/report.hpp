@@ -8,6 +8,7 @@
 
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/parameters.hpp"
+#include "tools/pipeline/shrink_avatar.hpp"
 
 namespace gr {
 
@@ -19,11 +20,11 @@ struct StageSeconds {
 
 /// What a retarget run did and measured; written as report.json.
 struct RetargetReport {
-  std::string quality;
+  Quality quality = Quality::kBalanced;
   PipelineParameters parameters;
   StageSeconds seconds;
 
-  std::string shrink_mode;
+  ShrinkMode shrink_mode = ShrinkMode::kLevelset;
   double shrink_depth = 0.0;       ///< levelset erosion d, normalized units (0 for skeleton)
   int shrink_medial_vertices = 0;  ///< vertices stopped in the medial region
 

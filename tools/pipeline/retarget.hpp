@@ -1,10 +1,12 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/report.hpp"
 #include "tools/pipeline/scene.hpp"
+#include "tools/pipeline/shrink_avatar.hpp"
 
 namespace gr {
 
@@ -13,8 +15,8 @@ struct RetargetOptions {
   ScenePaths inputs;
   std::string out_dir;
   bool skirt = false;          ///< add a virtual bone between the legs for L_pos
-  std::string shrink_mode;     ///< "levelset", "skeleton", or empty: skeleton when skeletons are given
-  std::string quality = "balanced";      ///< "fast", "balanced" or "accurate"
+  std::optional<ShrinkMode> shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
+  Quality quality = Quality::kBalanced;
   ParameterOverrides overrides;          ///< individual knobs over the preset
   int threads = 0;             ///< 0: all cores
   bool frames = false;         ///< write intermediate garment/avatar OBJs

@@ -26,17 +26,48 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 nlohmann::json point_json(const Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
+void require_skeletons_for(ShrinkMode mode, bool has_skeletons, const std::string& avatar_path) {
+  if (mode == ShrinkMode::kSkeleton && !has_skeletons)
+    throw InputError(avatar_path, 0, "skeleton shrink needs --source-skeleton and --target-skeleton");
+}
+
 void check_options(const ShrinkRunOptions& options, const Scene& scene) {
-  if (options.mode != "levelset" && options.mode != "skeleton")
-    throw InputError("", 0, fmt::format("unknown shrink mode '{}' (levelset or skeleton)", options.mode));
   if (!(options.voxel_size > 0.0) || !std::isfinite(options.voxel_size))
     throw InputError("", 0, "voxel size must be a positive number (normalized units)");
-  if (options.mode == "skeleton" && !scene.source_skeleton)
-    throw InputError(options.inputs.avatar, 0,
-                     "skeleton shrink needs --source-skeleton and --target-skeleton");
+  require_skeletons_for(options.mode, scene.source_skeleton.has_value(), options.inputs.avatar);
 }
 
 }  // namespace
+
+const char* to_string(ShrinkMode mode) {
+  switch (mode) {
+    case ShrinkMode::kLevelset: return "levelset";
+    case ShrinkMode::kSkeleton: return "skeleton";
+  }
+  return "unknown";
+}
+
+ShrinkMode parse_shrink_mode(const std::string& name) {
+  for (const ShrinkMode mode : {ShrinkMode::kLevelset, ShrinkMode::kSkeleton})
+    if (name == to_string(mode)) return mode;
+  throw InputError("", 0, fmt::format("unknown shrink mode '{}' (levelset or skeleton)", name));
+}
+
+ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
+                           const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
+                           const ProgressCallback& progress) {
+  if (mode == ShrinkMode::kLevelset) {
+    if (!grid) throw std::invalid_argument("the level-set shrink needs the avatar's signed distance");
+    LevelsetShrinkOptions options;
+    options.progress = progress;
+    return shrink_levelset(scene.avatar, scene.garment, *grid, options);
+  }
+  require_skeletons_for(mode, scene.source_skeleton.has_value(), "");
+  SkeletonShrinkOptions options;
+  options.progress = progress;
+  return shrink_to_skeleton(scene.avatar, scene.garment, *scene.source_skeleton,
+                            *scene.target_skeleton, skin_weights, options);
+}
 
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -46,7 +77,6 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const NormalizedScene normalized = make_normalized_scene(scene);
   const Normalization& normalization = normalized.normalization;
   const TriangleMesh& avatar = normalized.avatar;
-  const TriangleMesh& garment = normalized.garment;
 
   ShrinkRunResult run;
   const std::filesystem::path out(options.out_dir);
@@ -57,32 +87,26 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
     write_file_atomically(run.report_path,
                           [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
   };
-  report = {{"mode", options.mode},
+  report = {{"mode", to_string(options.mode)},
                            {"avatar", options.inputs.avatar},
                            {"garment", options.inputs.garment},
                            {"units", "depth and voxel_size in normalized scene units (body about 2 tall); "
                                      "positions in the garment file's frame"},
                            {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
   try {
-    if (options.mode == "levelset") {
+    if (options.mode == ShrinkMode::kLevelset) {
       const auto grid_start = std::chrono::steady_clock::now();
       SignedDistanceOptions grid_options;
       grid_options.progress = options.progress;
       const SignedDistanceGrid grid = build_signed_distance(avatar, options.voxel_size, grid_options);
       run.grid_seconds = seconds_since(grid_start);
-      LevelsetShrinkOptions shrink_options;
-      shrink_options.progress = options.progress;
-      run.shrink = shrink_levelset(avatar, garment, grid, shrink_options);
+      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, options.progress);
       report["voxel_size"] = options.voxel_size;
       report["grid_seconds"] = run.grid_seconds;
       report["grid_active_voxels"] = grid.active_voxel_count();
       report["grid_bytes"] = grid.memory_bytes();
     } else {
-      SkeletonShrinkOptions shrink_options;
-      shrink_options.progress = options.progress;
-      run.shrink = shrink_to_skeleton(
-          avatar, garment, *normalized.source_skeleton, *normalized.target_skeleton, scene.skin_weights,
-          shrink_options);
+      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, nullptr, options.progress);
       report["pullback"] = run.shrink.pullback;
       report["collapsed_vertices"] = run.shrink.collapsed_vertices;
       report["collapse_rounds"] = run.shrink.collapse_rounds;
@@ -125,7 +149,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   report["certifications"] = run.shrink.certifications;
   report["shrink_seconds"] = run.shrink.seconds;
   write_report();
-  run.message = options.mode == "levelset"
+  run.message = options.mode == ShrinkMode::kLevelset
                     ? fmt::format("shrunk avatar certified free of the garment at depth {:.4g} "
                                   "({} vertices in the medial region)",
                                   run.shrink.depth, run.shrink.medial_vertices)

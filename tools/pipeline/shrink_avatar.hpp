@@ -8,11 +8,32 @@
 
 namespace gr {
 
+class SignedDistanceGrid;
+struct NormalizedScene;
+
+/// How the avatar is shrunk: eroded along its signed distance, or collapsed onto the
+/// source skeleton's bones.
+enum class ShrinkMode { kLevelset, kSkeleton };
+
+/// "levelset" or "skeleton".
+const char* to_string(ShrinkMode mode);
+/// The mode named `name`. @throw InputError for any other name.
+ShrinkMode parse_shrink_mode(const std::string& name);
+
+/// Shrinks the normalized avatar until it is certified free of the garment.
+/// @param grid the avatar's signed distance, at full depth; read in levelset mode only.
+/// @param skin_weights #joints × #avatar vertices, or empty (skeleton mode only).
+/// @throw InputError in skeleton mode without skeletons; std::invalid_argument in levelset
+///        mode without a grid; NoValidShrinkError when no shrink is found.
+ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
+                           const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
+                           const ProgressCallback& progress = {});
+
 /// Everything `garment-retarget shrink` can be asked.
 struct ShrinkRunOptions {
   ScenePaths inputs;             ///< garment and avatar; skeletons and weights for "skeleton"
   std::string out_dir;
-  std::string mode = "levelset"; ///< "levelset" or "skeleton"
+  ShrinkMode mode = ShrinkMode::kLevelset;
   double voxel_size = 0.01;      ///< normalized scene units (the body is about 2 tall)
   ProgressCallback progress;     ///< optional
 };
@@ -32,7 +53,7 @@ struct ShrinkRunResult {
 /// garment) and DIR/report.json (mode, depth, times, medial vertices, or the conflict when
 /// no shrink was found, with its position in the garment's frame).
 /// @throw InputError for bad inputs (skeleton mode without skeletons, a non-positive voxel
-///        size, an unknown mode), OutputError when out_dir cannot be written.
+///        size), OutputError when out_dir cannot be written.
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options);
 
 }  // namespace gr

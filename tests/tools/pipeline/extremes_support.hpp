@@ -110,7 +110,7 @@ inline RetargetOptions quiet_options(const std::string& garment, const std::stri
   options.inputs.garment = garment;
   options.inputs.avatar = avatar;
   options.out_dir = out.string();
-  options.quality = "fast";
+  options.quality = Quality::kFast;
   options.threads = 2;
   options.quiet = true;
   return options;

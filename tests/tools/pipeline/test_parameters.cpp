@@ -2,15 +2,16 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/common/errors.hpp"
 #include "tools/pipeline/parameters.hpp"
 
 using namespace gr;
 
 TEST_CASE("parameters: presets order the tolerances and share the barrier stiffness",
           "[pipeline][parameters]") {
-  const PipelineParameters fast = parameters_for_quality("fast");
-  const PipelineParameters balanced = parameters_for_quality("balanced");
-  const PipelineParameters accurate = parameters_for_quality("accurate");
+  const PipelineParameters fast = parameters_for_quality(parse_quality("fast"));
+  const PipelineParameters balanced = parameters_for_quality(parse_quality("balanced"));
+  const PipelineParameters accurate = parameters_for_quality(parse_quality("accurate"));
   CHECK(fast.solver.newton.gradient_tolerance > balanced.solver.newton.gradient_tolerance);
   CHECK(balanced.solver.newton.gradient_tolerance > accurate.solver.newton.gradient_tolerance);
   CHECK(fast.voxel_size > balanced.voxel_size);
@@ -23,12 +24,12 @@ TEST_CASE("parameters: presets order the tolerances and share the barrier stiffn
   CHECK(fast.solver.fit_support() == fast.solver.dhat);
   CHECK(balanced.solver.fit_support() == balanced.solver.dhat);
   CHECK(accurate.solver.fit_support() == 0.5 * accurate.solver.dhat);
-  CHECK_THROWS_AS(parameters_for_quality("best"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_quality("best"), InputError);
 }
 
 TEST_CASE("parameters: overrides replace single knobs and keep the rest",
           "[pipeline][parameters]") {
-  PipelineParameters p = parameters_for_quality("balanced");
+  PipelineParameters p = parameters_for_quality(parse_quality("balanced"));
   const PipelineParameters before = p;
   ParameterOverrides overrides;
   overrides.fit_dhat = 0.0005;
