@@ -24,6 +24,7 @@
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/progress.hpp"
+#include "tools/pipeline/result_page.hpp"
 
 namespace gr {
 
@@ -370,8 +371,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
       totals.garment_self_intersections, report.min_distance / report.scene_scale,
       report.fit_error.mean, report.fit_error.p95, total.seconds());
   progress.log("certify", "{}", summary);
-  return finish(report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified,
-                summary);
+  RetargetResult done = finish(report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified,
+                               summary);
+  write_retarget_pages(options.out_dir, options.png, scene, frames, certificate, done.report);
+  return done;
 }
 
 }  // namespace gr
