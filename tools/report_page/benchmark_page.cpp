@@ -10,6 +10,8 @@ namespace gr {
 std::string benchmark_page_html(const BenchmarkPageData& data) {
   if (!data.row_pages.empty() && data.row_pages.size() != data.rows.size())
     throw std::invalid_argument("benchmark page: row_pages needs one entry per row");
+  if (!data.row_pages.empty() && data.link_column >= data.columns.size())
+    throw std::invalid_argument("benchmark page: link_column is not a column");
   std::string body = "<header><h1>" + html_escape(data.title) + "</h1>";
   if (!data.notes.empty()) body += "<p class=\"subtitle\">" + html_escape(data.notes) + "</p>";
   body += "</header>\n<main class=\"bench\">\n";
@@ -28,7 +30,7 @@ std::string benchmark_page_html(const BenchmarkPageData& data) {
                                   std::to_string(data.columns.size()) + " columns");
     body += "<tr>";
     for (std::size_t c = 0; c < row.size(); ++c) {
-      const bool link = c == 0 && !data.row_pages.empty() && !data.row_pages[r].empty();
+      const bool link = c == data.link_column && !data.row_pages.empty() && !data.row_pages[r].empty();
       body += "<td>";
       body += link ? "<a href=\"" + html_escape(data.row_pages[r]) + "\">" + html_escape(row[c]) + "</a>"
                    : html_escape(row[c]);

@@ -191,14 +191,19 @@ TEST_CASE("the benchmark page embeds its plot and escapes its table", "[report_p
   data.columns = {"scene", "config", "total s"};
   data.rows = {{"dress_form", "fast", "0.61"}, {"a<b", "x&y", "1"}};
   data.row_pages = {"runs/dress_form_fast/report.html", ""};
+  data.link_column = 1;
   data.plot_png = std::string("\x89PNG\r\n\x1a\n", 8) + "rest";
   data.plot_caption = "time against fit error";
   const std::string html = gr::benchmark_page_html(data);
   CHECK(html.find("src=\"data:image/png;base64,iVBORw0KGgpyZXN0\"") != std::string::npos);
-  CHECK(html.find("<a href=\"runs/dress_form_fast/report.html\">dress_form</a>") != std::string::npos);
+  CHECK(html.find("<td>dress_form</td><td><a href=\"runs/dress_form_fast/report.html\">fast</a>") !=
+        std::string::npos);
   CHECK(html.find("<td>a&lt;b</td><td>x&amp;y</td>") != std::string::npos);
   CHECK(web_addresses(html).empty());
   CHECK(count_of(html, "<script") == 0);
+  data.link_column = 3;
+  CHECK_THROWS_AS(gr::benchmark_page_html(data), std::invalid_argument);
+  data.link_column = 1;
   data.rows[1].pop_back();
   CHECK_THROWS_AS(gr::benchmark_page_html(data), std::invalid_argument);
 }
