@@ -20,6 +20,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+/// Warnings listed beside the view; the documents at the end hold them all.
+constexpr std::size_t kListedWarnings = 12;
+
 // ---- Reading the report documents -------------------------------------------------------
 
 /// The value at a JSON pointer, or null when the document has none there.
@@ -219,7 +222,10 @@ Section warnings_section(const ReportPageData& data) {
     return s;
   }
   s.html = "<ul class=\"warnings\">\n";
-  for (const auto& item : items) s.html += "<li>" + html_escape(item) + "</li>\n";
+  for (std::size_t i = 0; i < std::min(items.size(), kListedWarnings); ++i)
+    s.html += "<li>" + html_escape(items[i]) + "</li>\n";
+  if (items.size() > kListedWarnings)
+    s.html += fmt::format("<li>and {} more in the documents below</li>\n", items.size() - kListedWarnings);
   s.html += "</ul>\n";
   return s;
 }
@@ -240,6 +246,18 @@ std::string documents_html(const ReportPageData& data) {
 
 // ---- The view ------------------------------------------------------------------------
 
+bool has_no_fit_faces(const ReportPageData& data) {
+  for (const PageGarment& g : data.garments)
+    if (std::find(g.no_fit.begin(), g.no_fit.end(), true) != g.no_fit.end()) return true;
+  return false;
+}
+
+bool has_shape_toggle(const ReportPageData& data) {
+  for (const PageGarment& g : data.garments)
+    if (g.shapes.size() > 1) return true;
+  return false;
+}
+
 /// The heat map's legend: the gradient with its distances, and the other colours.
 std::string legend_html(const ReportPageData& data, double heat_range) {
   std::string gradient;
@@ -249,15 +267,12 @@ std::string legend_html(const ReportPageData& data, double heat_range) {
     return fmt::format("<span class=\"swatch\" id=\"{}\"><i style=\"background: rgb({},{},{})\"></i>{}</span>",
                        id, c.r, c.g, c.b, label);
   };
-  bool any_no_fit = false;
-  for (const PageGarment& g : data.garments)
-    any_no_fit = any_no_fit || std::find(g.no_fit.begin(), g.no_fit.end(), true) != g.no_fit.end();
   std::string out = "<div class=\"legend\" id=\"gr-legend\">\n<div class=\"legend-title\">distance to the body</div>\n";
   out += fmt::format("<div class=\"gradient\" style=\"background: linear-gradient(to right{})\"></div>\n", gradient);
   out += fmt::format("<div class=\"ticks\"><span>0</span><span>{}</span><span>≥ {} {}</span></div>\n",
                      format_number(0.5 * heat_range), format_number(heat_range), html_escape(data.units));
   out += "<div class=\"swatches\">";
-  if (any_no_fit) out += swatch(kNoFitColour, "no-fit (hangs free)", "gr-swatch-nofit");
+  if (has_no_fit_faces(data)) out += swatch(kNoFitColour, "no-fit (hangs free)", "gr-swatch-nofit");
   out += swatch(kMarkedColour, "intersecting or marked", "gr-swatch-marked");
   out += swatch(kAvatarColour, "avatar", "gr-swatch-avatar");
   out += "</div>\n</div>\n";
@@ -276,8 +291,9 @@ std::string toolbar_html(const ReportPageData& data) {
                          i, i, html_escape(toggled->shapes[i].label));
     out += "</span>\n";
   }
-  out += "<label><input type=\"checkbox\" id=\"gr-nofit\" checked> no-fit region</label>\n"
-         "<label><input type=\"checkbox\" id=\"gr-body\" checked> avatar</label>\n"
+  if (has_no_fit_faces(data))
+    out += "<label><input type=\"checkbox\" id=\"gr-nofit\" checked> no-fit region</label>\n";
+  out += "<label><input type=\"checkbox\" id=\"gr-body\" checked> avatar</label>\n"
          "<label><input type=\"checkbox\" id=\"gr-seethrough\"> see-through avatar</label>\n"
          "<button type=\"button\" id=\"gr-reset\">front view</button>\n</div>\n";
   return out;
@@ -346,7 +362,8 @@ std::string report_page_html(const ReportPageData& data) {
   body += toolbar_html(data);
   body += "<div class=\"canvas-box\" id=\"gr-view\"><noscript>The 3D view needs JavaScript.</noscript></div>\n";
   body += legend_html(data, heat_range);
-  body += "<p class=\"hint\">Drag to orbit, scroll to zoom, right-drag to pan; T toggles the garment's shape.</p>\n";
+  body += std::string("<p class=\"hint\">Drag to orbit, scroll to zoom, right-drag to pan") +
+          (has_shape_toggle(data) ? "; T toggles the garment's shape" : "") + ".</p>\n";
   body += "</section>\n<aside class=\"numbers\">\n";
   body += verdict_html(data);
   std::vector<Section> sections =

@@ -254,7 +254,8 @@ function start() {
   document.addEventListener('keydown', (event) => {
     if (event.key === 't' || event.key === 'T') setShape((shapeIndex + 1) % shapeCount);
   });
-  document.getElementById('gr-nofit').addEventListener('change', (event) => {
+  // Only pages with no-fit faces have this box.
+  document.getElementById('gr-nofit')?.addEventListener('change', (event) => {
     highlightNoFit = event.target.checked;
     setShape(shapeIndex);
   });
