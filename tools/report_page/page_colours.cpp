@@ -42,8 +42,12 @@ double page_heat_range(const ReportPageData& data) {
   return data.heat_range > 0.0 ? data.heat_range : default_heat_range(data.avatar);
 }
 
+bool on_no_fit_stripe(double x, double y) {
+  return std::fmod(x + y, kNoFitStripePeriod) < kNoFitStripeWidth;
+}
+
 std::vector<Rgb8> garment_corner_colours(const PageGarment& garment, const GarmentShape& shape,
-                                         double heat_range, bool highlight_no_fit) {
+                                         double heat_range) {
   const auto face_count = static_cast<std::size_t>(garment.faces.rows());
   std::vector<bool> marked(face_count, false);
   for (const int f : shape.marked_faces) marked[static_cast<std::size_t>(f)] = true;
@@ -53,8 +57,6 @@ std::vector<Rgb8> garment_corner_colours(const PageGarment& garment, const Garme
       Rgb8& c = colours[3 * f + k];
       if (marked[f])
         c = kMarkedColour;
-      else if (highlight_no_fit && !garment.no_fit.empty() && garment.no_fit[f])
-        c = kNoFitColour;
       else
         c = heat_colour(shape.distance[static_cast<std::size_t>(
                             garment.faces(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(k)))] /
@@ -69,6 +71,7 @@ nlohmann::json page_colours_json() {
   for (const HeatStop& s : heat_stops()) stops.push_back({s.position, rgb(s.colour)});
   return {{"heat_stops", stops},
           {"no_fit", rgb(kNoFitColour)},
+          {"no_fit_stripes", {{"period", kNoFitStripePeriod}, {"width", kNoFitStripeWidth}}},
           {"marked", rgb(kMarkedColour)},
           {"avatar", rgb(kAvatarColour)},
           {"background", rgb(kBackgroundColour)}};

@@ -31,8 +31,16 @@ const std::array<HeatStop, 5>& heat_stops();
 /// The heat map's colour at `t` (clamped to [0, 1]; NaN counts as 1).
 Rgb8 heat_colour(double t);
 
-/// Faces listed as no-fit, when their highlight is on.
+/// Faces listed as no-fit are striped in this colour over their heat colour, so their
+/// distance to the body stays readable.
 constexpr Rgb8 kNoFitColour{96, 178, 96};
+/// The stripes run diagonally across the screen: `kNoFitStripeWidth` pixels of every
+/// `kNoFitStripePeriod` (in output pixels, along x + y).
+constexpr double kNoFitStripePeriod = 10.0;
+constexpr double kNoFitStripeWidth = 4.0;
+
+/// Whether the point (x, y) of the screen, in output pixels, lies on a no-fit stripe.
+bool on_no_fit_stripe(double x, double y);
 /// Intersecting or otherwise marked faces: a colour outside the heat map.
 constexpr Rgb8 kMarkedColour{230, 0, 230};
 constexpr Rgb8 kAvatarColour{170, 170, 170};
@@ -48,14 +56,14 @@ double default_heat_range(const TriangleMesh& avatar);
 double page_heat_range(const ReportPageData& data);
 
 /// The colour of every face corner of one shape of a garment (#F×3 entries, face-major):
-/// marked faces in kMarkedColour, else no-fit faces in kNoFitColour when
-/// `highlight_no_fit`, else the heat colour of the corner vertex's distance / heat_range.
-/// The page's script applies the same rule to the stops and colours of page_colours_json.
+/// marked faces in kMarkedColour, the others the heat colour of the corner vertex's
+/// distance / heat_range (no-fit stripes go on top when drawn). The page's script applies
+/// the same rule to the stops and colours of page_colours_json.
 /// @pre shape belongs to garment (distance has one entry per vertex); heat_range > 0.
 std::vector<Rgb8> garment_corner_colours(const PageGarment& garment, const GarmentShape& shape,
-                                         double heat_range, bool highlight_no_fit);
+                                         double heat_range);
 
-/// The stops and colours above, as the page's script reads them.
+/// The stops, colours and stripes above, as the page's script reads them.
 nlohmann::json page_colours_json();
 
 }  // namespace gr

@@ -272,7 +272,11 @@ std::string legend_html(const ReportPageData& data, double heat_range) {
   out += fmt::format("<div class=\"ticks\"><span>0</span><span>{}</span><span>≥ {} {}</span></div>\n",
                      format_number(0.5 * heat_range), format_number(heat_range), html_escape(data.units));
   out += "<div class=\"swatches\">";
-  if (has_no_fit_faces(data)) out += swatch(kNoFitColour, "no-fit (hangs free)", "gr-swatch-nofit");
+  if (has_no_fit_faces(data))
+    out += fmt::format(
+        "<span class=\"swatch\" id=\"gr-swatch-nofit\"><i style=\"background: repeating-linear-gradient("
+        "135deg, rgb({0},{1},{2}) 0 2px, #fff 2px 5px)\"></i>no-fit (striped: hangs free)</span>",
+        kNoFitColour.r, kNoFitColour.g, kNoFitColour.b);
   out += swatch(kMarkedColour, "intersecting or marked", "gr-swatch-marked");
   out += swatch(kAvatarColour, "avatar", "gr-swatch-avatar");
   out += "</div>\n</div>\n";

@@ -31,19 +31,23 @@ MatrixX3d vertex_normals(const Eigen::Ref<const MatrixX3d>& vertices,
   return normals;
 }
 
+Vector3d as_vector(Rgb8 c) { return Vector3d(c.r, c.g, c.b); }
+
 /// A supersampled colour and depth buffer.
 class Raster {
  public:
-  Raster(int width, int height)
-      : width_(width), height_(height),
+  /// `factor` samples per output pixel along each axis.
+  Raster(int width, int height, int factor)
+      : width_(width), height_(height), factor_(factor),
         colour_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
                 Eigen::Vector3f(kBackgroundColour.r, kBackgroundColour.g, kBackgroundColour.b)),
         depth_(colour_.size(), -std::numeric_limits<double>::infinity()) {}
 
   /// Draws a triangle given its corners' pixel coordinates and depth (p), colours (0..255)
-  /// and light factors, keeping the nearest surface at each pixel centre.
+  /// and light factors, keeping the nearest surface at each sample; `striped` lays the
+  /// no-fit stripes over it.
   void triangle(const std::array<Vector3d, 3>& p, const std::array<Vector3d, 3>& colour,
-                const std::array<double, 3>& light) {
+                const std::array<double, 3>& light, bool striped) {
     const double area = edge(p[0], p[1], p[2]);
     if (!(std::abs(area) > 0.0)) return;
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({p[0].x(), p[1].x(), p[2].x()}))));
@@ -62,14 +66,18 @@ class Raster {
                               static_cast<std::size_t>(x);
         if (z <= depth_[i]) continue;
         depth_[i] = z;
-        colour_[i] = ((w0 * light[0]) * colour[0] + (w1 * light[1]) * colour[1] +
-                      (w2 * light[2]) * colour[2])
-                         .cast<float>();
+        if (striped && on_no_fit_stripe(s.x() / factor_, s.y() / factor_))
+          colour_[i] = ((w0 * light[0] + w1 * light[1] + w2 * light[2]) * as_vector(kNoFitColour)).cast<float>();
+        else
+          colour_[i] = ((w0 * light[0]) * colour[0] + (w1 * light[1]) * colour[1] +
+                        (w2 * light[2]) * colour[2])
+                           .cast<float>();
       }
   }
 
-  /// Box-filters `factor` × `factor` blocks into one pixel each.
-  RgbImage downsample(int factor) const {
+  /// Box-filters factor × factor blocks of samples into one pixel each.
+  RgbImage downsample() const {
+    const int factor = factor_;
     RgbImage image(width_ / factor, height_ / factor, kBackgroundColour);
     const double samples = static_cast<double>(factor * factor);
     for (int y = 0; y < image.height; ++y)
@@ -93,17 +101,17 @@ class Raster {
     return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
   }
 
-  int width_, height_;
+  int width_, height_, factor_;
   // Floats: a supersampled still has millions of samples.
   std::vector<Eigen::Vector3f> colour_;
   std::vector<double> depth_;
 };
 
-Vector3d as_vector(Rgb8 c) { return Vector3d(c.r, c.g, c.b); }
-
-/// Draws a mesh whose corner colours are given face-major (3 per face).
+/// Draws a mesh whose corner colours are given face-major (3 per face); faces flagged in
+/// `striped` (#F, or empty for none) get the no-fit stripes.
 void draw_mesh(Raster& raster, const StillCamera& camera, const Eigen::Ref<const MatrixX3d>& vertices,
-               const Eigen::Ref<const MatrixX3i>& faces, const std::vector<Rgb8>& corner_colours) {
+               const Eigen::Ref<const MatrixX3i>& faces, const std::vector<Rgb8>& corner_colours,
+               const std::vector<bool>& striped) {
   const MatrixX3d normals = vertex_normals(vertices, faces);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     std::array<Vector3d, 3> p, colour;
@@ -116,7 +124,7 @@ void draw_mesh(Raster& raster, const StillCamera& camera, const Eigen::Ref<const
       light[k] = kAmbient + (1.0 - kAmbient) *
                                 std::abs(normals.row(v).dot(camera.toward_viewer.transpose()));
     }
-    raster.triangle(p, colour, light);
+    raster.triangle(p, colour, light, !striped.empty() && striped[static_cast<std::size_t>(f)]);
   }
 }
 
@@ -157,18 +165,19 @@ StillCamera still_camera(const ReportPageData& data, StillView view, int width, 
 
 RgbImage render_still(const ReportPageData& data, StillView view, const StillOptions& options) {
   const int factor = options.supersample;
-  Raster raster(options.width * factor, options.height * factor);
+  Raster raster(options.width * factor, options.height * factor, factor);
   const StillCamera camera = still_camera(data, view, options.width * factor, options.height * factor);
   draw_mesh(raster, camera, data.avatar.vertices, data.avatar.faces,
-            std::vector<Rgb8>(3 * static_cast<std::size_t>(data.avatar.faces.rows()), kAvatarColour));
+            std::vector<Rgb8>(3 * static_cast<std::size_t>(data.avatar.faces.rows()), kAvatarColour), {});
   const double heat_range = page_heat_range(data);
   for (const PageGarment& garment : data.garments) {
     if (garment.shapes.empty()) continue;
     const GarmentShape& shape = garment.shapes.back();
     draw_mesh(raster, camera, shape.vertices, garment.faces,
-              garment_corner_colours(garment, shape, heat_range, options.highlight_no_fit));
+              garment_corner_colours(garment, shape, heat_range),
+              options.highlight_no_fit ? garment.no_fit : std::vector<bool>());
   }
-  return raster.downsample(factor);
+  return raster.downsample();
 }
 
 void write_still_images(const ReportPageData& data, const std::string& front_path,

@@ -16,7 +16,7 @@ struct StillOptions {
   int width = 720;               ///< pixels
   int height = 960;              ///< pixels
   int supersample = 2;           ///< samples per pixel along each axis, box-filtered down
-  bool highlight_no_fit = true;  ///< no-fit faces in their own colour, as the page starts
+  bool highlight_no_fit = true;  ///< no-fit faces striped, as the page starts
 };
 
 /// The orthographic camera of a still: maps page-frame points to pixels, fitted so the
@@ -39,8 +39,8 @@ StillCamera still_camera(const ReportPageData& data, StillView view, int width, 
 
 /// Renders the avatar and the last shape of each garment (the output, when there are two)
 /// without a browser: a z-buffer rasterizer, orthographic, lit from the viewer (two-sided
-/// Lambert with ambient), garment corners coloured as garment_corner_colours, the avatar
-/// in kAvatarColour on kBackgroundColour.
+/// Lambert with ambient), garment corners coloured as garment_corner_colours with the no-fit
+/// stripes over them, the avatar in kAvatarColour on kBackgroundColour.
 /// @pre options.width, height, supersample > 0.
 RgbImage render_still(const ReportPageData& data, StillView view, const StillOptions& options = {});
 

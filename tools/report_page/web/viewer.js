@@ -1,7 +1,7 @@
 // The report page's 3D view: the avatar and the garments, coloured by distance to the body.
 // The scene comes from <script id="gr-scene"> (written by tools/report_page/report_page.cpp):
 // meshes quantized and base64-encoded, the heat map's stops and the view's axes. The colour
-// rule is the one garment_corner_colours applies for the still images.
+// rule and the no-fit stripes are those of the still images (page_colours.hpp).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
@@ -120,17 +120,18 @@ class GarmentView {
     this.geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(n), 3));
     this.geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(n), 3));
     this.geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(n), 3));
-    this.mesh = new THREE.Mesh(this.geometry, new THREE.MeshLambertMaterial({
-      vertexColors: true, side: THREE.DoubleSide }));
+    this.geometry.setAttribute('nofit', new THREE.BufferAttribute(new Float32Array(3 * this.faceCount), 1));
+    const material = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide });
+    stripeNoFit(material, scene.colours);
+    this.mesh = new THREE.Mesh(this.geometry, material);
     this.shapeIndex = -1;
   }
 
   shapeFor(index) { return this.shapes[Math.min(index, this.shapes.length - 1)]; }
 
   // The sRGB colour of corner k of face f, as garment_corner_colours decides it.
-  cornerColour(shape, f, k, highlightNoFit) {
+  cornerColour(shape, f, k) {
     if (shape.marked[f]) return this.colours.marked;
-    if (highlightNoFit && this.noFit[f]) return this.colours.no_fit;
     return heatColour(this.colours.heat_stops, shape.distance[this.faces[3 * f + k]] / this.heatRange);
   }
 
@@ -139,6 +140,7 @@ class GarmentView {
     const position = this.geometry.getAttribute('position');
     const normal = this.geometry.getAttribute('normal');
     const colour = this.geometry.getAttribute('color');
+    const noFit = this.geometry.getAttribute('nofit');
     for (let f = 0; f < this.faceCount; ++f)
       for (let k = 0; k < 3; ++k) {
         const corner = 3 * f + k;
@@ -147,11 +149,10 @@ class GarmentView {
           position.array[3 * corner + axis] = shape.positions[3 * v + axis];
           normal.array[3 * corner + axis] = shape.normals[3 * v + axis];
         }
-        linearColour(this.cornerColour(shape, f, k, highlightNoFit)).toArray(colour.array, 3 * corner);
+        linearColour(this.cornerColour(shape, f, k)).toArray(colour.array, 3 * corner);
+        noFit.array[corner] = highlightNoFit && this.noFit[f] && !shape.marked[f] ? 1 : 0;
       }
-    position.needsUpdate = true;
-    normal.needsUpdate = true;
-    colour.needsUpdate = true;
+    for (const attribute of [position, normal, colour, noFit]) attribute.needsUpdate = true;
     this.geometry.computeBoundingSphere();
     this.geometry.computeBoundingBox();
     this.shapeIndex = index;
@@ -164,6 +165,27 @@ class GarmentView {
         if (this.faces[3 * f + k] === v && (shape.marked[f] || this.noFit[f])) return true;
     return false;
   }
+}
+
+// Lays the no-fit stripes of page_colours.hpp over faces whose "nofit" attribute is 1:
+// diagonal in screen space, so the heat colour shows between them.
+function stripeNoFit(material, colours) {
+  const ratio = window.devicePixelRatio;
+  const period = (colours.no_fit_stripes.period * ratio).toFixed(3);
+  const width = (colours.no_fit_stripes.width * ratio).toFixed(3);
+  material.onBeforeCompile = (shader) => {
+    shader.uniforms.noFitColour = { value: linearColour(colours.no_fit) };
+    const patch = (source, anchor, addition) => {
+      if (!source.includes(anchor)) throw new Error(`three's shader has no ${anchor}`);
+      return source.replace(anchor, `${anchor}\n${addition}`);
+    };
+    shader.vertexShader = 'attribute float nofit;\nvarying float vNoFit;\n' +
+        patch(shader.vertexShader, '#include <begin_vertex>', 'vNoFit = nofit;');
+    shader.fragmentShader = 'uniform vec3 noFitColour;\nvarying float vNoFit;\n' +
+        patch(shader.fragmentShader, '#include <color_fragment>',
+              `if (vNoFit > 0.5 && mod(gl_FragCoord.x + gl_FragCoord.y, ${period}) < ${width})
+                 diffuseColor.rgb = noFitColour;`);
+  };
 }
 
 function avatarMesh(entry, colours) {
