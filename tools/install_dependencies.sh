@@ -8,7 +8,13 @@ packages=(
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread
   libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
   catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
+  libpng-dev chromium
 )
+# Node.js and npm bundle the report page's three.js at build time and drive the browser
+# tests; a machine with both from elsewhere (a newer Node.js with its own npm) keeps them.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

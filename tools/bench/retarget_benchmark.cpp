@@ -1,10 +1,12 @@
 // Speed against accuracy: runs each scene at each quality preset and along sweeps of
 // eps_tol and voxel size, then writes results.csv, results.md and a plot of time against
-// fit error and against distortion (matplotlib, in a virtual environment made on first use).
+// fit error and against distortion (matplotlib, in a virtual environment made on first use),
+// and results.html: the table and the plot in one page that links each run's report page.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include "core/common/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "tools/pipeline/retarget.hpp"
+#include "tools/report_page/benchmark_page.hpp"
 
 namespace fs = std::filesystem;
 
@@ -49,6 +52,7 @@ std::vector<BenchScene> default_scenes(const std::string& project, const std::st
 struct Run {
   std::string scene, config, quality;
   bool preset = false;
+  std::string out_dir;
   gr::RetargetResult result;
 };
 
@@ -73,25 +77,68 @@ std::string csv_row(const Run& run) {
       r.distortion.max_edge_change, r.surface_energy_per_area, r.min_distance / r.scene_scale);
 }
 
+const std::vector<std::string> kTableColumns = {
+    "scene", "config", "certified", "shrink s", "inflate s", "fit s", "certify s", "total s",
+    "Newton (inflate/fit)", "AL rounds", "peak MB", "fit error mean / p95", "edge change mean / max",
+    "min clearance"};
+
+std::vector<std::string> table_row(const Run& run) {
+  const auto& r = run.result.report;
+  return {run.scene,
+          run.config,
+          r.certified ? "yes" : "no",
+          fmt::format("{:.2f}", r.seconds.shrink),
+          fmt::format("{:.2f}", r.seconds.inflate),
+          fmt::format("{:.2f}", r.seconds.fit),
+          fmt::format("{:.2f}", r.seconds.certify),
+          fmt::format("{:.2f}", r.seconds.total),
+          fmt::format("{}/{}", r.inflate_newton_iterations, r.fit_newton_iterations),
+          fmt::format("{}", r.al_rounds),
+          fmt::format("{:.0f}", r.peak_memory_mb),
+          fmt::format("{:.3g} / {:.3g}", r.fit_error.mean, r.fit_error.p95),
+          fmt::format("{:.2f}% / {:.2f}%", 100.0 * r.distortion.mean_edge_change,
+                      100.0 * r.distortion.max_edge_change),
+          fmt::format("{:.3g}", r.min_distance / r.scene_scale)};
+}
+
+const char* kTableNote =
+    "Fit error and clearance in each avatar's file units; times are wall seconds on this machine.";
+
 std::string markdown_table(const std::vector<Run>& runs) {
-  std::string md =
-      "| scene | config | certified | shrink s | inflate s | fit s | certify s | total s | Newton "
-      "(inflate/fit) | AL rounds | peak MB | fit error mean / p95 | edge change mean / max | "
-      "min clearance |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string md = "|";
+  for (const auto& c : kTableColumns) md += " " + c + " |";
+  md += "\n|";
+  for (std::size_t i = 0; i < kTableColumns.size(); ++i) md += "---|";
+  md += "\n";
   for (const Run& run : runs) {
-    const auto& r = run.result.report;
-    md += fmt::format(
-        "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {}/{} | {} | {:.0f} | {:.3g} / "
-        "{:.3g} | {:.2f}% / {:.2f}% | {:.3g} |\n",
-        run.scene, run.config, r.certified ? "yes" : "**no**", r.seconds.shrink, r.seconds.inflate,
-        r.seconds.fit, r.seconds.certify, r.seconds.total, r.inflate_newton_iterations,
-        r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95,
-        100.0 * r.distortion.mean_edge_change, 100.0 * r.distortion.max_edge_change,
-        r.min_distance / r.scene_scale);
+    std::vector<std::string> cells = table_row(run);
+    if (cells[2] == "no") cells[2] = "**no**";
+    md += "|";
+    for (const auto& cell : cells) md += " " + cell + " |";
+    md += "\n";
   }
-  md += "\nFit error and clearance in each avatar's file units; times are wall seconds on this "
-        "machine.\n";
+  md += std::string("\n") + kTableNote + "\n";
   return md;
+}
+
+/// results.html: the table, each row linking to its run's report page, and the plot.
+void write_results_page(const fs::path& out, const std::vector<Run>& runs, bool plotted) {
+  gr::BenchmarkPageData page;
+  page.title = "garment-retarget: speed against accuracy";
+  page.notes = kTableNote;
+  page.columns = kTableColumns;
+  page.link_column = 1;  // the configuration: unique within a scene
+  for (const Run& run : runs) {
+    page.rows.push_back(table_row(run));
+    page.row_pages.push_back(fs::relative(run.out_dir, out).string() + "/report.html");
+  }
+  if (plotted) {
+    std::ifstream png(out / "tradeoff.png", std::ios::binary);
+    page.plot_png.assign(std::istreambuf_iterator<char>(png), std::istreambuf_iterator<char>());
+    page.plot_caption = "wall time against mean fit error and against mean edge-length change "
+                        "(squares: presets)";
+  }
+  gr::write_benchmark_page((out / "results.html").string(), page);
 }
 
 /// Makes (once) a virtual environment with matplotlib beside the results and plots them.
@@ -164,7 +211,7 @@ int main(int argc, char** argv) {
       options.quiet = true;
       options.out_dir = (fs::path(out) / "runs" / (scene.name + "_" + config.name)).string();
       std::fprintf(stderr, "%s %s ...\n", scene.name.c_str(), config.name.c_str());
-      Run run{scene.name, config.name, config.quality, config.preset, {}};
+      Run run{scene.name, config.name, config.quality, config.preset, options.out_dir, {}};
       try {
         run.result = gr::run_retarget(options);
       } catch (const std::exception& e) {
@@ -184,7 +231,8 @@ int main(int argc, char** argv) {
   gr::write_file_atomically((fs::path(out) / "results.md").string(), [&](std::ostream& s) { s << md; });
   std::printf("%s", md.c_str());
   const int plotted = plot(project, out);
-  std::printf("\nresults: %s/results.csv, results.md%s\n", out.c_str(),
+  write_results_page(out, runs, plotted == 0);
+  std::printf("\nresults: %s/results.csv, results.md, results.html%s\n", out.c_str(),
               plotted == 0 ? ", tradeoff.png" : "");
   return 0;
 }

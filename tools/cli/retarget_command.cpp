@@ -81,12 +81,16 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");
+  cmd->add_flag("--png", options->png,
+                "Also write OUT/front.png and OUT/side.png: the result rendered without a browser");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
   cmd->footer(
       "Writes OUT/garment.obj (with its materials and textures: same vertex order, UVs, groups\n"
       "and materials as the input, positions in the avatar's frame and units), OUT/report.json\n"
       "(stage times, iterations, energies, fit error, what was modelled) and\n"
-      "OUT/certificate.json (exact check of the written file against the avatar).\n"
+      "OUT/certificate.json (exact check of the written file against the avatar) and\n"
+      "OUT/report.html (both, beside a 3D view of the input and output garments; opens\n"
+      "from disk with no network).\n"
       "Exit codes: 0 certified, 1 certification failed, 2 bad input, 3 no valid shrink,\n"
       "4 solver failure, 5 output not writable, 6 internal error.");
   cmd->callback([options, shrink_mode, quality, &exit_code]() {

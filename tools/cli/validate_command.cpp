@@ -8,6 +8,7 @@
 #include "validate/certify/validation.hpp"
 #include "validate/report/marks_file.hpp"
 #include "validate/report/validation_report.hpp"
+#include "tools/pipeline/result_page.hpp"
 
 namespace gr {
 
@@ -18,6 +19,7 @@ struct ValidateCommandOptions {
   std::string avatar;
   std::string report;
   std::string marks;
+  std::string html;
   std::optional<double> threshold;
   std::size_t max_listed = kDefaultListedIssues;
 };
@@ -36,6 +38,9 @@ void add_validate_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--avatar", options->avatar, "Avatar OBJ, in the garments' frame")->required();
   cmd->add_option("--report", options->report, "Write the JSON validation report here");
   cmd->add_option("--marks", options->marks, "Write an OBJ of the offending faces here");
+  cmd->add_option("--html", options->html,
+                  "Write an HTML page here: a 3D view with the offending faces marked, and the "
+                  "report (opens from disk with no network)");
   cmd->add_option("--threshold", options->threshold,
                   "Count garment vertices closer than this to the avatar (input units)")
       ->check(CLI::NonNegativeNumber);
@@ -50,6 +55,8 @@ void add_validate_command(CLI::App& root, int& exit_code) {
     if (!options->report.empty())
       write_json_file(options->report, validation_report(validation, options->max_listed));
     if (!options->marks.empty()) write_marks_obj(options->marks, validation);
+    if (!options->html.empty())
+      write_validation_page(options->html, validation, validation_report(validation, options->max_listed));
     std::printf("%s\n", validation_summary(validation).c_str());
     exit_code = validation.result.certified() ? kExitSuccess : kExitIntersections;
   });

@@ -23,6 +23,7 @@
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/progress.hpp"
+#include "tools/pipeline/result_page.hpp"
 
 namespace gr {
 
@@ -433,8 +434,11 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const Certificate certificate = certify_stage(run);
   const std::string summary = measure_stage(run, in, fit.garment, certificate, total.seconds());
   run.progress.log("certify", "{}", summary);
-  return finish(report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified,
-                summary);
+  RetargetResult done = finish(
+      report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified, summary);
+  write_retarget_pages(options.out_dir, options.png, in.scene, in.normalized.normalization,
+                       certificate, done.report);
+  return done;
 }
 
 }  // namespace gr

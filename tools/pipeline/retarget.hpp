@@ -20,6 +20,7 @@ struct RetargetOptions {
   ParameterOverrides overrides;          ///< individual knobs over the preset
   int threads = 0;             ///< 0: all cores
   bool frames = false;         ///< write intermediate garment/avatar OBJs
+  bool png = false;            ///< also write front.png and side.png beside report.html
   bool quiet = false;
 };
 

@@ -1,0 +1,259 @@
+// One browser check of a report page, in Debian's headless Chromium driven by playwright-core.
+//
+//   node check_report_page.mjs --page FILE --check console|network|canvas|garment-pixels
+//                              [--screenshot OUT.png]
+//
+// Exits 0 when the check passes, 1 with the reason when it fails. The page is opened from
+// file:// as a user opens it; WebGL runs on SwiftShader (no GPU here).
+import { chromium } from 'playwright-core';
+import { resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { writeFileSync } from 'node:fs';
+
+const VIEWPORT = { width: 1280, height: 860 };
+// A pixel this far (per channel) from the background colour counts as drawn.
+const DRAWN = 12;
+// Hue tolerance (degrees) between a rendered garment pixel and the colour its vertex got:
+// lighting scales a colour, it does not turn it.
+const HUE_DEGREES = 25;
+
+function parseArguments(argv) {
+  const options = {};
+  for (let i = 0; i < argv.length; i += 2) options[argv[i].replace(/^--/, '')] = argv[i + 1];
+  if (!options.page || !options.check) {
+    console.error('usage: node check_report_page.mjs --page FILE --check NAME [--screenshot OUT.png]');
+    process.exit(2);
+  }
+  return options;
+}
+
+class CheckFailed extends Error {}
+function expect(condition, message) {
+  if (!condition) throw new CheckFailed(message);
+}
+
+async function launch() {
+  return chromium.launch({
+    executablePath: process.env.GR_CHROMIUM || '/usr/bin/chromium',
+    args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+}
+
+// Opens the page and waits until the view has drawn; `watch` sees the page before it loads.
+async function openReport(browser, url, watch = () => {}) {
+  const context = await browser.newContext({ viewport: VIEWPORT, deviceScaleFactor: 1 });
+  const page = await context.newPage();
+  const errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+  page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
+  await watch(page, context);
+  await page.goto(url, { waitUntil: 'load' });
+  try {
+    await page.waitForFunction(() => window.grView !== undefined, null, { timeout: 30000 });
+  } catch {
+    throw new CheckFailed(`the 3D view did not start; errors: ${errors.join(' | ') || 'none'}`);
+  }
+  return { page, errors };
+}
+
+// A user's session: every toggle and checkbox, an orbit drag and a zoom.
+async function exercise(page) {
+  for (const button of await page.locator('.shape-button').all()) await button.click();
+  for (const box of await page.locator('.toolbar input[type=checkbox]').all()) {
+    await box.click();
+    await box.click();
+  }
+  await page.keyboard.press('t');
+  const box = await page.locator('#gr-view canvas').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 30, { steps: 8 });
+  await page.mouse.up();
+  await page.mouse.wheel(0, -240);
+  await page.locator('#gr-reset').click();
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+}
+
+// Decodes PNG screenshots in a blank page of the same browser (window.images there) and
+// runs `analyse` on them in that page, so no image library is needed and only small
+// results travel back.
+async function analysePngs(browser, pngs, analyse, argument) {
+  const page = await browser.newPage();
+  try {
+    await page.evaluate(async (encoded) => {
+      window.images = [];
+      for (const base64 of encoded) {
+        const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+        const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }),
+                                               { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
+        const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+        const context = canvas.getContext('2d');
+        context.drawImage(bitmap, 0, 0);
+        window.images.push(context.getImageData(0, 0, bitmap.width, bitmap.height));
+      }
+    }, pngs.map((png) => png.toString('base64')));
+    return await page.evaluate(analyse, argument);
+  } finally {
+    await page.close();
+  }
+}
+
+// Pixels of the first image further than `tolerance` from `background` (runs in the browser).
+function countDrawn({ background, tolerance }) {
+  const image = window.images[0];
+  let drawn = 0;
+  for (let i = 0; i < image.data.length; i += 4) {
+    const d = Math.max(Math.abs(image.data[i] - background[0]), Math.abs(image.data[i + 1] - background[1]),
+                       Math.abs(image.data[i + 2] - background[2]));
+    if (d > tolerance) ++drawn;
+  }
+  return { drawn, total: image.width * image.height };
+}
+
+// Pixels at which the first two images differ (runs in the browser).
+function countDifferent({ tolerance }) {
+  const [a, b] = window.images;
+  let different = 0;
+  for (let i = 0; i < a.data.length; i += 4)
+    for (let k = 0; k < 3; ++k)
+      if (Math.abs(a.data[i + k] - b.data[i + k]) > tolerance) { ++different; break; }
+  return different;
+}
+
+// The colours of the first image around each point (3×3 pixels; runs in the browser).
+function coloursAround(points) {
+  const image = window.images[0];
+  return points.map(({ x, y }) => {
+    const around = [];
+    for (let dy = -1; dy <= 1; ++dy)
+      for (let dx = -1; dx <= 1; ++dx) {
+        const px = Math.round(x) + dx, py = Math.round(y) + dy;
+        if (px < 0 || py < 0 || px >= image.width || py >= image.height) continue;
+        const i = 4 * (py * image.width + px);
+        around.push([image.data[i], image.data[i + 1], image.data[i + 2]]);
+      }
+    return around;
+  });
+}
+
+function hueSaturation([r, g, b]) {
+  const hi = Math.max(r, g, b), lo = Math.min(r, g, b), chroma = hi - lo;
+  if (chroma === 0) return [0, 0];
+  let hue;
+  if (hi === r) hue = 60 * ((((g - b) / chroma) % 6) + 6) % 360;
+  else if (hi === g) hue = 60 * ((b - r) / chroma + 2);
+  else hue = 60 * ((r - g) / chroma + 4);
+  return [hue, chroma / hi];
+}
+
+function sameHue(seen, expected) {
+  const [h1, s1] = hueSaturation(seen);
+  const [h2, s2] = hueSaturation(expected);
+  const d = Math.abs(h1 - h2);
+  return s1 > 0.2 && s2 > 0.2 && Math.min(d, 360 - d) <= HUE_DEGREES;
+}
+
+const checks = {
+  // No console error or uncaught exception while loading and using the page.
+  async console(browser, url) {
+    const { page, errors } = await openReport(browser, url);
+    await exercise(page);
+    expect(errors.length === 0, `console errors: ${errors.join(' | ')}`);
+    return 'no console errors while loading, toggling, orbiting and zooming';
+  },
+
+  // Every request the page makes is intercepted: only the page itself may be loaded.
+  async network(browser, url) {
+    const seen = [];
+    const { page } = await openReport(browser, url, async (p, context) => {
+      p.on('request', (r) => seen.push(r.url()));
+      await context.route('**/*', (route) => {
+        seen.push(route.request().url());
+        return route.request().url() === url ? route.continue() : route.abort();
+      });
+    });
+    await exercise(page);
+    const resources = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => e.name));
+    const others = [...seen, ...resources].filter((u) => u !== url);
+    expect(seen.includes(url), `the page's own request was not seen (${seen.join(', ')})`);
+    expect(others.length === 0, `requests besides the page: ${others.join(', ')}`);
+    return `one request (the page itself), ${resources.length} resource entries`;
+  },
+
+  // The canvas draws something in every shape of the toggle, and toggling changes it.
+  async canvas(browser, url, options) {
+    const { page, errors } = await openReport(browser, url);
+    const background = await page.evaluate(
+      () => JSON.parse(document.getElementById('gr-scene').textContent).colours.background);
+    const count = await page.evaluate(() => window.grView.shapeCount);
+    const shots = [];
+    const summary = [];
+    for (let shape = 0; shape < count; ++shape) {
+      await page.evaluate((s) => window.grView.setShape(s), shape);
+      const png = await page.locator('#gr-view canvas').screenshot();
+      const { drawn, total } = await analysePngs(browser, [png], countDrawn, { background, tolerance: DRAWN });
+      expect(drawn > 0.02 * total, `shape ${shape}: only ${drawn} of ${total} canvas pixels drawn`);
+      shots.push(png);
+      summary.push(`shape ${shape}: ${(100 * drawn / total).toFixed(1)}% drawn`);
+      if (options.screenshot) writeFileSync(options.screenshot.replace(/\.png$/, `_shape${shape}.png`), png);
+    }
+    if (count > 1) {
+      const different = await analysePngs(browser, shots.slice(0, 2), countDifferent, { tolerance: DRAWN });
+      expect(different > 1000, `toggling the shape changed only ${different} pixels`);
+      summary.push(`${different} pixels differ between shapes`);
+    }
+    expect(errors.length === 0, `console errors: ${errors.join(' | ')}`);
+    return summary.join('; ');
+  },
+
+  // In a screenshot, garment vertices seen from the camera show the colour they were given.
+  async 'garment-pixels'(browser, url, options) {
+    const { page } = await openReport(browser, url);
+    const count = await page.evaluate(() => window.grView.shapeCount);
+    const summary = [];
+    for (let shape = 0; shape < count; ++shape) {
+      await page.evaluate((s) => window.grView.setShape(s), shape);
+      const probes = await page.evaluate(() => {
+        const out = [];
+        const n = window.grView.vertexCount(0);
+        const stride = Math.max(1, Math.floor(n / 600));
+        for (let v = 0; v < n; v += stride) {
+          const p = window.grView.probe(0, v);
+          if (p.visible && !p.flagged) out.push({ v, ...p });
+        }
+        return out;
+      });
+      const box = await page.locator('#gr-view canvas').boundingBox();
+      const inside = probes.filter((p) => p.x > box.x + 3 && p.y > box.y + 3 &&
+                                          p.x < box.x + box.width - 3 && p.y < box.y + box.height - 3);
+      expect(inside.length >= 10, `shape ${shape}: only ${inside.length} garment vertices in view`);
+      const png = await page.screenshot();
+      if (options.screenshot) writeFileSync(options.screenshot.replace(/\.png$/, `_shape${shape}.png`), png);
+      const colours = await analysePngs(browser, [png], coloursAround, inside.map(({ x, y }) => ({ x, y })));
+      const misses = inside.filter((p, i) => !colours[i].some((c) => sameHue(c, p.colour)));
+      expect(misses.length <= 0.1 * inside.length,
+             `shape ${shape}: ${misses.length} of ${inside.length} garment points not in their colour, e.g. ` +
+             misses.slice(0, 3).map((p) => `vertex ${p.v} at (${p.x.toFixed(0)}, ${p.y.toFixed(0)}) wants ` +
+               `rgb(${p.colour}) sees rgb(${colours[inside.indexOf(p)][4]})`).join('; '));
+      summary.push(`shape ${shape}: ${inside.length - misses.length} of ${inside.length} points in their colour`);
+    }
+    return summary.join('; ');
+  },
+};
+
+const options = parseArguments(process.argv.slice(2));
+const check = checks[options.check];
+if (!check) {
+  console.error(`unknown check ${options.check}; one of ${Object.keys(checks).join(', ')}`);
+  process.exit(2);
+}
+const url = pathToFileURL(resolve(options.page)).href;
+const browser = await launch();
+try {
+  console.log(`ok ${options.check}: ${await check(browser, url, options)}`);
+} catch (error) {
+  console.error(`FAILED ${options.check} on ${url}: ${error.message}`);
+  process.exitCode = 1;
+} finally {
+  await browser.close();
+}

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Fixture of the browser tests: the bundled scene's report page, made as
+# `tools/quickstart.sh run` makes it, and a `validate --html` page of its input garment
+# (which crosses the dress form, so that page has marked faces to show).
+#   make_pages.sh GARMENT_RETARGET SCENE_DIR OUT_DIR
+set -euo pipefail
+cli="$1" scene="$2" out="$3"
+rm -rf "$out"
+mkdir -p "$out"
+"$cli" retarget --garment "$scene/garment.obj" --avatar "$scene/avatar.obj" \
+  --no-fit "$scene/no-fit.txt" --out "$out/dress_form" --quiet
+status=0
+"$cli" validate --garment "$scene/garment.obj" --avatar "$scene/avatar.obj" \
+  --html "$out/validate.html" || status=$?
+# Exit 1 is validate's verdict "intersections found", expected here.
+[ "$status" -eq 1 ]
+test -s "$out/dress_form/report.html"
+test -s "$out/validate.html"

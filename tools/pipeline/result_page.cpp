@@ -1,0 +1,124 @@
+#include "tools/pipeline/result_page.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "validate/checks/mesh_intersections.hpp"
+#include "validate/measure/surface_distance.hpp"
+#include "tools/report_page/report_page.hpp"
+#include "tools/report_page/still_image.hpp"
+
+namespace gr {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+GarmentShape shape_of(std::string label, const MatrixX3d& vertices, const TriangleMesh& avatar,
+                      const std::set<int>& marked) {
+  return {std::move(label), vertices, distances_to_surface(avatar, vertices),
+          std::vector<int>(marked.begin(), marked.end())};
+}
+
+/// Faces of garment `index` that the validation found intersecting or degenerate.
+std::set<int> marked_faces(const Validation& validation, int index) {
+  const GarmentFindings& found = validation.result.garments[static_cast<std::size_t>(index)];
+  std::set<int> faces(found.degenerate_faces.begin(), found.degenerate_faces.end());
+  for (const FacePair& p : found.avatar_intersections.pairs) faces.insert(p.first);
+  for (const FacePair& p : found.self_intersections.pairs.pairs) {
+    faces.insert(p.first);
+    faces.insert(p.second);
+  }
+  for (const GarmentPairFindings& pair : validation.result.garment_pairs)
+    for (const FacePair& p : pair.intersections.pairs) {
+      if (pair.first == index) faces.insert(p.first);
+      if (pair.second == index) faces.insert(p.second);
+    }
+  return faces;
+}
+
+/// Per OBJ face: all three corners are listed no-fit vertices.
+std::vector<bool> no_fit_faces(const Scene& scene) {
+  const std::set<int> listed(scene.no_fit.begin(), scene.no_fit.end());
+  std::vector<bool> no_fit;
+  no_fit.reserve(scene.garment_document.faces.size());
+  for (const auto& face : scene.garment_document.faces) {
+    bool all = true;
+    for (const ObjCorner& corner : face)
+      all = all && listed.count(scene.garment.obj_to_sim[static_cast<std::size_t>(corner.position)]) > 0;
+    no_fit.push_back(all);
+  }
+  return no_fit;
+}
+
+}  // namespace
+
+ReportPageData retarget_page_data(const Scene& scene, const Normalization& frames,
+                                  const Certificate& certificate, const RetargetReport& report) {
+  const Validation& checked = certificate.validation;
+  ReportPageData data;
+  data.title = fmt::format("{} on {}", fs::path(scene.garment_document.source_path).filename().string(),
+                           fs::path(scene.avatar_document.source_path).filename().string());
+  data.subtitle = fmt::format("garment-retarget {}: {} on {}, quality {}", GR_VERSION,
+                              scene.garment_document.source_path, scene.avatar_document.source_path,
+                              to_string(report.quality));
+  data.avatar = checked.avatar.mesh;
+  const TriangleMesh& output = checked.garments.front().mesh;
+
+  // The input as the run placed it over the avatar: garment frame to scene to avatar frame.
+  TriangleMesh input = mesh_as_written(scene.garment_document);
+  for (Eigen::Index i = 0; i < input.vertices.rows(); ++i)
+    input.vertices.row(i) = frames.avatar_to_scene
+                                .invert(frames.garment_to_scene.apply(input.vertices.row(i).transpose()))
+                                .transpose();
+  std::set<int> input_crossing;
+  for (const FacePair& p : find_intersecting_face_pairs(input, data.avatar).pairs)
+    input_crossing.insert(p.first);
+
+  PageGarment garment;
+  garment.name = fs::path(scene.garment_document.source_path).filename().string();
+  garment.faces = output.faces;
+  garment.no_fit = no_fit_faces(scene);
+  garment.shapes.push_back(shape_of("input", input.vertices, data.avatar, input_crossing));
+  garment.shapes.push_back(shape_of("output", output.vertices, data.avatar, marked_faces(checked, 0)));
+  data.garments.push_back(std::move(garment));
+  data.report = to_json(report);
+  data.certificate = certificate.json;
+  return data;
+}
+
+void write_retarget_pages(const std::string& out_dir, bool stills, const Scene& scene,
+                          const Normalization& frames, const Certificate& certificate,
+                          const RetargetReport& report) {
+  const ReportPageData data = retarget_page_data(scene, frames, certificate, report);
+  const fs::path out(out_dir);
+  write_report_page((out / "report.html").string(), data);
+  if (stills) write_still_images(data, (out / "front.png").string(), (out / "side.png").string());
+}
+
+void write_validation_page(const std::string& path, const Validation& validation,
+                           const nlohmann::ordered_json& report) {
+  ReportPageData data;
+  data.title = "Validation of " + fs::path(validation.garments.front().path).filename().string() +
+               (validation.garments.size() > 1 ? fmt::format(" and {} more", validation.garments.size() - 1) : "") +
+               " on " + fs::path(validation.avatar.path).filename().string();
+  data.subtitle = fmt::format("garment-retarget {} validate, avatar {}", GR_VERSION, validation.avatar.path);
+  data.units = "file units";
+  data.avatar = validation.avatar.mesh;
+  for (std::size_t i = 0; i < validation.garments.size(); ++i) {
+    const CheckedFile& file = validation.garments[i];
+    PageGarment garment;
+    garment.name = fs::path(file.path).filename().string();
+    garment.faces = file.mesh.faces;
+    garment.shapes.push_back(
+        shape_of("as given", file.mesh.vertices, data.avatar, marked_faces(validation, static_cast<int>(i))));
+    data.garments.push_back(std::move(garment));
+  }
+  data.certificate = report;
+  write_report_page(path, data);
+}
+
+}  // namespace gr
