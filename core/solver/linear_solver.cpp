@@ -59,14 +59,16 @@ bool LinearSolver::pad(const Eigen::SparseMatrix<double>& A, Eigen::Index max_dr
   return true;
 }
 
-bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift) {
+bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& shift) {
   const auto max_dropped = static_cast<Eigen::Index>(pattern_slack_ * padded_.nonZeros());
   if (!pad(A, max_dropped)) {
     constexpr double kMaxUnionGrowth = 1.25;
-    Eigen::SparseMatrix<double> pattern = A;
+    Eigen::SparseMatrix<double> diagonal(A.rows(), A.cols());
+    diagonal.setIdentity();
+    Eigen::SparseMatrix<double> pattern = A + 0.0 * diagonal;
     if (padded_.rows() == A.rows() && padded_.cols() == A.cols()) {
       // Union of the two patterns (0 · padded_ keeps its structure, not its values).
-      Eigen::SparseMatrix<double> merged = A + 0.0 * padded_;
+      Eigen::SparseMatrix<double> merged = pattern + 0.0 * padded_;
       if (merged.nonZeros() <= kMaxUnionGrowth * A.nonZeros()) pattern = std::move(merged);
     }
     pattern.makeCompressed();
@@ -82,7 +84,11 @@ bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, double shift)
     eigen_assert(padded);
     (void)padded;
   }
-  cholesky_.setShift(shift);
+  if (shift.size() > 0) {
+    double* values = padded_.valuePtr();
+    for (Eigen::Index c = 0; c < shift.size(); ++c)
+      values[diagonal_[static_cast<std::size_t>(c)]] += shift[c];
+  }
   cholesky_.factorize(padded_);
   return cholesky_.info() == Eigen::Success;
 }

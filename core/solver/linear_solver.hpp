@@ -30,10 +30,12 @@ class LinearSolver {
   /// a fraction of the pattern's size; 0 (the default) factors A exactly.
   void set_pattern_slack(double fraction) { pattern_slack_ = fraction; }
 
-  /// Factors A + shift·I (with entries outside the pattern compensated, see above). A is
-  /// symmetric with both triangles stored (only the lower one is read).
+  /// Factors A + diag(shift) (with entries outside the pattern compensated, see above). A is
+  /// symmetric with both triangles stored (only the lower one is read); the analysed
+  /// pattern always holds the whole diagonal.
+  /// @param shift per row, added to the diagonal; empty adds nothing.
   /// @return false when CHOLMOD finds the matrix not positive definite numerically.
-  bool factorize(const Eigen::SparseMatrix<double>& A, double shift = 0.0);
+  bool factorize(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& shift = {});
   /// Solves with the last successful factorization. @pre factorize returned true.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 

@@ -8,6 +8,11 @@
 
 namespace gr {
 
+namespace {
+/// The Newton-step convergence test applies while mu is within this factor of its floor.
+constexpr double kTrustedDamping = 100.0;
+}  // namespace
+
 const char* to_string(SolverStatus status) {
   switch (status) {
     case SolverStatus::kConverged: return "converged";
@@ -18,20 +23,50 @@ const char* to_string(SolverStatus status) {
   return "unknown";
 }
 
-bool ProjectedNewton::newton_direction(const Eigen::SparseMatrix<double>& H,
-                                       const Eigen::VectorXd& g, Eigen::VectorXd& direction) {
-  const double diagonal_scale =
-      H.rows() > 0 ? H.diagonal().cwiseAbs().sum() / static_cast<double>(H.rows()) : 0.0;
-  double shift = 0.0;
-  for (int attempt = 0; attempt <= options_.shift_retries; ++attempt) {
-    if (linear_solver_.factorize(H, shift)) {
+namespace {
+
+/// Marquardt's scaling: H's diagonal, floored so that every dof is damped (a vertex no term
+/// holds has a zero diagonal).
+Eigen::VectorXd damping_scale(const Eigen::SparseMatrix<double>& H) {
+  Eigen::VectorXd diagonal = H.diagonal().cwiseAbs();
+  const double mean = diagonal.size() > 0 ? diagonal.mean() : 0.0;
+  constexpr double kRelativeFloor = 1e-10;
+  const double floor = mean > 0.0 && std::isfinite(mean) ? kRelativeFloor * mean : 1.0;
+  return diagonal.cwiseMax(floor);
+}
+
+}  // namespace
+
+bool ProjectedNewton::damped_direction(Problem& problem, const Eigen::SparseMatrix<double>& H,
+                                       const Eigen::VectorXd& g, Eigen::VectorXd& direction,
+                                       NewtonResult& result) {
+  const Eigen::VectorXd scale = damping_scale(H);
+  // A factorization can still fail where rounding meets stiffnesses far apart: more
+  // damping then, up to max_damping.
+  constexpr double kFailureGrowth = 100.0;
+  for (;;) {
+    ++result.factorizations;
+    if (linear_solver_.factorize(H, damping_ * scale)) {
       direction = -linear_solver_.solve(g);
-      // A nearly singular factor can still produce garbage: require a descent direction.
-      if (direction.allFinite() && direction.dot(g) < 0.0) return true;
+      if (direction.allFinite() && direction.dot(g) < 0.0) break;
     }
-    shift = shift == 0.0 ? options_.first_shift * std::max(diagonal_scale, 1e-300) : 100.0 * shift;
+    if (damping_ >= options_.max_damping) return false;
+    damping_ = std::min(kFailureGrowth * damping_, options_.max_damping);
   }
-  return false;
+  const double length = problem.step_length(direction);
+  if (length > options_.max_step_length) direction *= options_.max_step_length / length;
+  return true;
+}
+
+void ProjectedNewton::update_damping(double ratio) {
+  if (ratio > 0.0) {
+    const double cube = (2.0 * ratio - 1.0) * (2.0 * ratio - 1.0) * (2.0 * ratio - 1.0);
+    damping_ = std::max(damping_ * std::max(1.0 / 3.0, 1.0 - cube), options_.min_damping);
+    damping_growth_ = 2.0;
+  } else {
+    damping_ = std::min(damping_ * damping_growth_, options_.max_damping);
+    damping_growth_ *= 2.0;
+  }
 }
 
 NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
@@ -47,6 +82,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     result.status = status;
     result.message = std::move(message);
     result.elapsed_seconds = elapsed();
+    result.damping = damping_;
     return result;
   };
 
@@ -58,6 +94,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
 
   Eigen::VectorXd g, direction, trial;
   Eigen::SparseMatrix<double> H;
+  if (damping_ < 0.0) damping_ = std::max(options_.initial_damping, options_.min_damping);
   // Energies at the last energy_window + 1 accepted points, the current one last.
   std::deque<double> recent_energies{energy};
   const double start_energy = energy;
@@ -91,10 +128,12 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     }
 
     problem.hessian(x, H);
-    const bool newton = newton_direction(H, g, direction);
-    if (newton) {
+    if (damped_direction(problem, H, g, direction, result)) {
       result.newton_step_length = problem.step_length(direction);
-      if (result.newton_step_length <= options_.step_tolerance)
+      // A short step says the minimizer is near only when the damping is too small to
+      // have shortened it.
+      if (result.newton_step_length <= options_.step_tolerance &&
+          damping_ <= kTrustedDamping * options_.min_damping)
         return finish(SolverStatus::kConverged,
                       fmt::format("Newton step {:.3g} <= {:.3g} after {} steps",
                                   result.newton_step_length, options_.step_tolerance,
@@ -102,10 +141,9 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     } else {
       direction = -g;
       ++result.gradient_descent_steps;
+      const double length = problem.step_length(direction);
+      if (length > options_.max_step_length) direction *= options_.max_step_length / length;
     }
-    const double length = problem.step_length(direction);
-    if (length > options_.max_step_length) direction *= options_.max_step_length / length;
-
     double alpha = std::min(1.0, problem.max_step(x, direction));
     if (!(alpha > 0.0))
       return finish(SolverStatus::kNoDescent,
@@ -116,13 +154,25 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     energy = problem.value(x);
     double trial_energy = 0.0;
     bool accepted = false;
-    for (int halving = 0; halving <= options_.max_line_search_halvings; ++halving, alpha *= 0.5) {
+    // The quadratic model's decrease along the direction: -(alpha g.p + alpha^2/2 p.Hp).
+    const double slope = g.dot(direction);
+    const double curvature = direction.dot(H * direction);
+    int halvings = 0;
+    for (; halvings <= options_.max_line_search_halvings; ++halvings, alpha *= 0.5) {
       trial = x + alpha * direction;
       trial_energy = problem.value(trial);
       if (std::isfinite(trial_energy) && trial_energy <= energy && problem.is_valid(trial)) {
         accepted = true;
         break;
       }
+    }
+    // The step the model proposed, as far as contact allowed, judges the model; a step
+    // the line search had to cut counts as a failed prediction.
+    if (accepted && halvings == 0) {
+      const double predicted = -(alpha * slope + 0.5 * alpha * alpha * curvature);
+      update_damping(predicted > 0.0 ? (energy - trial_energy) / predicted : 0.0);
+    } else {
+      update_damping(0.0);
     }
     if (!accepted)
       return finish(SolverStatus::kNoDescent,
@@ -137,7 +187,8 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     if (static_cast<int>(recent_energies.size()) > options_.energy_window + 1)
       recent_energies.pop_front();
     problem.solution_changed(x);
-    if (progress) progress({result.iterations, energy, alpha, result.gradient_norm, elapsed()});
+    if (progress)
+      progress({result.iterations, energy, alpha, result.gradient_norm, elapsed(), damping_});
   }
 }
 

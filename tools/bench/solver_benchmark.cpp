@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   Eigen::SparseMatrix<double> H;
   const double hessian_ms = milliseconds(repeats, [&] { H = energy.hessian(V, 1.0, true); });
   gr::LinearSolver solver;
-  const double shift = 1e-8 * H.diagonal().cwiseAbs().maxCoeff();
+  const Eigen::VectorXd shift = Eigen::VectorXd::Constant(H.rows(), 1e-8 * H.diagonal().cwiseAbs().maxCoeff());
   const double first_factor_ms = milliseconds(1, [&] { solver.factorize(H, shift); });
   const double factor_ms = milliseconds(repeats, [&] { solver.factorize(H, shift); });
   const double solve_ms = milliseconds(repeats, [&] { solver.solve(g); });

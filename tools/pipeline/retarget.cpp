@@ -239,8 +239,8 @@ bool widen_scope_if_left(Run& run, SolverScene& solver, const MatrixX3d& garment
 NewtonCallback newton_progress(const Run& run, const char* stage_name) {
   return [&run, stage_name](const NewtonProgress& step) {
     if (step.iteration <= 3 || step.iteration % kNewtonLogEvery == 0)
-      run.progress.log(stage_name, "  Newton {:4d}  E {:.9g}  step {:.3g}  |g| {:.3g}",
-                       step.iteration, step.energy, step.step, step.gradient_norm);
+      run.progress.log(stage_name, "  Newton {:4d}  E {:.9g}  step {:.3g}  |g| {:.3g}  mu {:.2g}",
+                       step.iteration, step.energy, step.step, step.gradient_norm, step.damping);
   };
 }
 
