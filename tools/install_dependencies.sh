@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build python3 python3-venv clang
+  build-essential cmake ninja-build python3 python3-venv clang clang-format
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread
   libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
   catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev

@@ -133,4 +133,22 @@ inline double pair_separation_lower_bound(const std::array<Vector3d, 4>& x, int 
   return pair_separation_detail::lower_bound<1>({&x}, split, enough);
 }
 
+/// Whether the pair on rows `ids` of the stacked positions (split as above) may come within
+/// `threshold` somewhere along the motion V0 → V1: its separation bound is below the
+/// threshold. When V0 and V1 share their storage, the bound at V0 without motion (cheaper).
+/// @param V0 #V×3 and @param V1 #V×3 positions. @pre every id is a row of both.
+inline bool pair_may_come_within(const Eigen::Ref<const MatrixX3d>& V0,
+                                 const Eigen::Ref<const MatrixX3d>& V1,
+                                 const std::array<int, 4>& ids, int split, double threshold) {
+  const auto gather = [&ids](const Eigen::Ref<const MatrixX3d>& V) {
+    return std::array<Vector3d, 4>{V.row(ids[0]).transpose(), V.row(ids[1]).transpose(),
+                                   V.row(ids[2]).transpose(), V.row(ids[3]).transpose()};
+  };
+  const std::array<Vector3d, 4> x0 = gather(V0);
+  const double bound = V0.data() == V1.data()
+                           ? pair_separation_lower_bound(x0, split, threshold)
+                           : pair_separation_lower_bound(x0, gather(V1), split, threshold);
+  return bound < threshold;
+}
+
 }  // namespace gr

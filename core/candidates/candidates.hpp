@@ -33,6 +33,8 @@ struct Candidates {
   bool empty() const { return size() == 0; }
 };
 
+class SelfContactSearch;
+
 /// Finds candidates (as find_candidates and find_swept_candidates below) for one contact
 /// mesh over many calls, keeping what stays valid between them:
 /// - the avatar's trees are reused while the avatar's vertex boxes and the radius are
@@ -46,11 +48,11 @@ struct Candidates {
 ///   each Newton step searches the trees once.
 /// - pairs whose boxes overlap but whose separation bound (pair_separation.hpp) rules them
 ///   out are dropped before they reach the narrow phase.
-/// - self pairs are searched region against region (fold_free_regions.hpp, made from the
-///   garment of the first query); with mesh.cull_fold_free, pairs inside a region, or
-///   across the seam of two neighbouring leaves, that `stays_fold_free` along the query's
-///   motion (clearing the query's radius) are left out: they cannot touch, nor come that
-///   close.
+/// - self pairs are searched region against region by a SelfContactSearch
+///   (self_contact_search.hpp, made from the garment of the first query); with
+///   mesh.cull_fold_free, pairs inside a region, or across the seam of two neighbouring
+///   leaves, that `stays_fold_free` along the query's motion (clearing the query's radius)
+///   are left out: they cannot touch, nor come that close.
 /// The lists keep the order of the search they come from, the same on any thread count.
 /// Not safe for concurrent use.
 class CandidateFinder {
@@ -91,16 +93,8 @@ class CandidateFinder {
   bool on_swept_motion(const Eigen::Ref<const MatrixX3d>& V) const;
   Candidates filter_swept(const Eigen::Ref<const MatrixX3d>& V, double radius) const;
 
-  /// Self pairs between regions, and within those not fold free along V0 → V1.
-  void self_pairs(const std::vector<Box>& point_boxes, const std::vector<Box>& face_boxes,
-                  const std::vector<Box>& edge_boxes, const Eigen::Ref<const MatrixX3d>& V0,
-                  const Eigen::Ref<const MatrixX3d>& V1, double threshold,
-                  std::vector<PointTriangleCandidate>& point_triangle,
-                  std::vector<EdgeEdgeCandidate>& edge_edge);
-
-  struct SelfSearch;
   ContactMesh mesh_;
-  std::unique_ptr<SelfSearch> self_;
+  std::unique_ptr<SelfContactSearch> self_;  ///< made at the first query with self contact
   long swept_queries_ = 0;
   double fold_free_fraction_sum_ = 0.0;
   std::vector<int> avatar_points_;  ///< avatar vertices that some contact face uses

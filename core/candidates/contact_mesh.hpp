@@ -32,7 +32,4 @@ struct ContactMesh {
                            bool self_contact, const std::vector<int>& avatar_faces_used = {});
 };
 
-/// Unique undirected edges of a face list (#E×2, smaller index first).
-MatrixX2i unique_edges(const Eigen::Ref<const MatrixX3i>& faces);
-
 }  // namespace gr

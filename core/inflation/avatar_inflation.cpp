@@ -1,9 +1,10 @@
 #include "core/inflation/avatar_inflation.hpp"
 
-#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
+
+#include "core/common/stopwatch.hpp"
 
 namespace gr {
 
@@ -19,7 +20,7 @@ const char* to_string(InflationStatus status) {
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
                                const InflationCallback& on_round,
                                const NewtonCallback& on_newton_step) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
   const DofLayout& layout = problem.layout();
   AvatarConstraint& al = problem.constraint();
@@ -38,8 +39,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     result.lambda1 = al.lambda1;
     result.lambda2 = al.lambda2;
     result.fold_free_fraction = problem.contact().mean_fold_free_fraction();
-    result.elapsed_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.elapsed_seconds = stopwatch.seconds();
     return result;
   };
 

@@ -15,7 +15,7 @@
 #include "core/distance/edge_edge_distance.hpp"
 #include "core/distance/edge_edge_mollifier.hpp"
 #include "core/distance/point_triangle_distance.hpp"
-#include "core/potentials/stencil_assembly.hpp"
+#include "core/potentials/stencil_matrix_sum.hpp"
 
 namespace gr {
 namespace {

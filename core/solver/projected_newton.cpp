@@ -1,10 +1,11 @@
 #include "core/solver/projected_newton.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <deque>
 
 #include <fmt/format.h>
+
+#include "core/common/stopwatch.hpp"
 
 namespace gr {
 
@@ -71,10 +72,8 @@ void ProjectedNewton::update_damping(double ratio) {
 
 NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
                                        const NewtonCallback& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&start] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  const Stopwatch stopwatch;
+  const auto elapsed = [&stopwatch] { return stopwatch.seconds(); };
   NewtonResult result;
   linear_solver_.set_pattern_slack(options_.pattern_slack);
   const double sqrt_dofs = std::sqrt(static_cast<double>(std::max(problem.dof_count(), 1)));

@@ -1,7 +1,6 @@
 #include "shrink/shrunk_avatar/levelset_shrink.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -9,6 +8,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "core/common/stopwatch.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
 #include "shrink/shrunk_avatar/shrink_certification.hpp"
 
@@ -81,7 +81,7 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
     throw std::invalid_argument("shrink_levelset: depth tolerance and step must be positive");
   if (!grid.full_depth())
     throw std::invalid_argument("shrink_levelset: the grid must hold distances at full depth");
-  const auto start_time = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   report_progress(options.progress, "shrink", 0.0);
 
   const GridDistanceField field(grid);
@@ -121,8 +121,7 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
     result.medial_vertices = medial;
   };
   auto finish = [&]() {
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    result.seconds = stopwatch.seconds();
     report_progress(options.progress, "shrink", 1.0);
     return result;
   };

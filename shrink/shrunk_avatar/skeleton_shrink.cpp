@@ -1,7 +1,6 @@
 #include "shrink/shrunk_avatar/skeleton_shrink.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 #include <map>
 #include <optional>
@@ -11,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "core/common/stopwatch.hpp"
 #include "shrink/shrunk_avatar/shrink_certification.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 
@@ -204,7 +204,7 @@ ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& 
                                 const Eigen::MatrixXd& skin_weights,
                                 const SkeletonShrinkOptions& options) {
   check_inputs(avatar, source_skeleton, target_skeleton, skin_weights, options);
-  const auto start_time = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   report_progress(options.progress, "shrink", 0.0);
 
   const BonePlacement placement =
@@ -231,8 +231,7 @@ ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& 
         result.pullback = pullback;
         result.collapsed_vertices = collapse.collapsed_count();
         result.collapse_rounds = round;
-        result.seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+        result.seconds = stopwatch.seconds();
         report_progress(options.progress, "shrink", 1.0);
         return result;
       }

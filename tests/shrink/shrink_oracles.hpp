@@ -3,9 +3,14 @@
 #include <cmath>
 #include <limits>
 
+#include <catch2/catch.hpp>
+
 #include "core/common/types.hpp"
 #include "core/distance/point_triangle_distance.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
+#include "shrink/shrunk_avatar/shrink_certification.hpp"
+#include "shrink/shrunk_avatar/shrink_result.hpp"
+#include "validate/checks/mesh_intersections.hpp"
 
 namespace gr::test {
 
@@ -31,6 +36,25 @@ inline double brute_force_distance(const TriangleMesh& mesh, const Vector3d& p) 
                                                     mesh.vertices.row(mesh.faces(f, 1)).transpose(),
                                                     mesh.vertices.row(mesh.faces(f, 2)).transpose()));
   return std::sqrt(best);
+}
+
+/// True when some face has two corners at exactly the same position.
+inline bool has_coincident_corners(const TriangleMesh& mesh) {
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (mesh.vertices.row(mesh.faces(f, c)) == mesh.vertices.row(mesh.faces(f, (c + 1) % 3)))
+        return true;
+  return false;
+}
+
+/// Requires `result` to be a shrunk avatar (avatar's faces) that crosses no garment face by
+/// the validator's exact test and that the shrink's own check accepts.
+inline void require_certified(const TriangleMesh& avatar, const ShrinkResult& result,
+                              const TriangleMesh& garment) {
+  const TriangleMesh shrunk{result.vertices, avatar.faces};
+  REQUIRE(result.vertices.rows() == avatar.vertices.rows());
+  REQUIRE(find_intersecting_face_pairs(shrunk, garment).count == 0);
+  REQUIRE_FALSE(find_shrink_conflict(shrunk, garment).has_value());
 }
 
 }  // namespace gr::test

@@ -5,17 +5,17 @@
 #include <catch2/catch.hpp>
 #include <tbb/parallel_for.h>
 
+#include "core/mesh/primitives.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
 #include "shrink/shrunk_avatar/levelset_shrink.hpp"
 #include "shrink_oracles.hpp"
-#include "shrink_test_scenes.hpp"
 
 using namespace gr;
 
 TEST_CASE("signed distance voxels of a sphere are exact mesh distances", "[shrink][sdf]") {
-  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.013, -0.021, 0.007));
+  const TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.013, -0.021, 0.007));
   const double h = 0.02;
   const SignedDistanceGrid grid = build_signed_distance(sphere, h);
   REQUIRE(grid.background() == Approx(0.1).margin(1e-6));
@@ -46,7 +46,7 @@ TEST_CASE("signed distance voxels of a sphere are exact mesh distances", "[shrin
 }
 
 TEST_CASE("an inverted mesh gets the same signed distance", "[shrink][sdf]") {
-  TriangleMesh sphere = test::uv_sphere(0.4, Vector3d::Zero(), 12, 24);
+  TriangleMesh sphere = uv_sphere(0.4, Vector3d::Zero(), 12, 24);
   const SignedDistanceGrid outward = build_signed_distance(sphere, 0.05);
   sphere.faces.col(1).swap(sphere.faces.col(2));
   const SignedDistanceGrid inward = build_signed_distance(sphere, 0.05);
@@ -57,72 +57,8 @@ TEST_CASE("an inverted mesh gets the same signed distance", "[shrink][sdf]") {
   REQUIRE(outward.voxel_value(Eigen::Vector3i::Zero()) < -0.35);
 }
 
-TEST_CASE("signed distance of the shared avatars: sign and distance", "[shrink][sdf]") {
-  const std::string avatar_dir = GENERATE(as<std::string>{}, "foxgirl", "goblin");
-  const std::string garment_dir = avatar_dir == "foxgirl" ? "skirt" : "puffer";
-  const test::NormalizedScene scene = test::load_normalized_scene(garment_dir, avatar_dir);
-  const double h = 0.01;
-  const SignedDistanceGrid grid = build_signed_distance(scene.avatar, h);
-  const GridDistanceField field(grid);
-
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::uniform_int_distribution<Eigen::Index> vertex(0, scene.avatar.vertices.rows() - 1);
-  const Vector3d lo = scene.avatar.vertices.colwise().minCoeff().transpose().array() - 0.05;
-  const Vector3d size = scene.avatar.vertices.colwise().maxCoeff().transpose().array() + 0.05 - lo.array();
-  int inside = 0, outside = 0;
-  double worst_error = 0.0;
-  for (int trial = 0; trial < 300; ++trial) {
-    // Half uniform in the box, half near the surface (where the sign is hard).
-    const Vector3d p = trial % 2 == 0
-        ? Vector3d(lo + size.cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng))))
-        : Vector3d(scene.avatar.vertices.row(vertex(rng)).transpose() +
-                   0.06 * Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5));
-    const double winding = test::brute_force_winding_number(scene.avatar, p);
-    const double distance = test::brute_force_distance(scene.avatar, p);
-    const double phi = field.evaluate(p);
-    CAPTURE(avatar_dir, p.transpose(), winding, distance, phi);
-    // Within a voxel of the surface the spline may smooth across it; elsewhere the sign
-    // must agree with the oracle (clear cases only: far from a winding number of 1/2).
-    if (distance > 1.5 * h && std::abs(std::abs(winding) - 0.5) > 0.05) {
-      const bool oracle_inside = std::abs(winding) > 0.5;
-      REQUIRE((phi < 0.0) == oracle_inside);
-      (oracle_inside ? inside : outside)++;
-    }
-    if (std::abs(winding) > 0.6 || distance < grid.background() - 3 * h) {
-      REQUIRE(std::abs(std::abs(phi) - distance) < h);
-      worst_error = std::max(worst_error, std::abs(std::abs(phi) - distance));
-    }
-  }
-  CHECK(inside > 10);
-  CHECK(outside > 10);
-  INFO("largest distance error / voxel " << worst_error / h);
-  CHECK(worst_error < 0.75 * h);
-  // Voxels within a few voxels of the surface get their sign carried from a nearby voxel
-  // across the triangles between them: compare with the voxel's own winding number where
-  // that is clear (goblin has many open parts, foxgirl overlapping ones).
-  const TriangleTree tree(scene.avatar);
-  std::mt19937 sign_rng(23);
-  std::uniform_int_distribution<int> step(-4, 4);
-  int checked = 0, inside_near = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
-    const Eigen::Vector3i ijk =
-        (scene.avatar.vertices.row(vertex(sign_rng)).transpose() / h).array().round().cast<int>().matrix() +
-        Eigen::Vector3i(step(sign_rng), step(sign_rng), step(sign_rng));
-    const double winding = tree.winding_number(h * ijk.cast<double>());
-    if (std::abs(std::abs(winding) - 0.5) < 0.05) continue;
-    const double value = grid.voxel_value(ijk);
-    CAPTURE(avatar_dir, ijk.transpose(), winding, value);
-    REQUIRE((value < 0.0) == winding_number_inside(winding));
-    ++checked;
-    inside_near += value < 0.0;
-  }
-  CHECK(checked > 2500);
-  CHECK(inside_near > 300);
-}
-
 TEST_CASE("a narrow-band grid keeps the band and holds -background deeper inside", "[shrink][sdf]") {
-  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.013, -0.021, 0.007), 16, 32);
+  const TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.013, -0.021, 0.007), 16, 32);
   const double h = 0.02;
   const SignedDistanceGrid full = build_signed_distance(sphere, h);
   SignedDistanceOptions narrow_options;
@@ -148,7 +84,7 @@ TEST_CASE("a narrow-band grid keeps the band and holds -background deeper inside
     }
   CHECK(deep > 50);
   // The level-set shrink walks to full depth: it refuses the narrow grid.
-  REQUIRE_THROWS_AS(shrink_levelset(sphere, test::uv_sphere(0.3, Vector3d::Zero(), 6, 12), narrow),
+  REQUIRE_THROWS_AS(shrink_levelset(sphere, uv_sphere(0.3, Vector3d::Zero(), 6, 12), narrow),
                     std::invalid_argument);
 }
 
@@ -177,7 +113,7 @@ void check_derivatives(const GridDistanceField& field, const Vector3d& p, double
 }  // namespace
 
 TEST_CASE("tricubic sampler: gradient and Hessian match finite differences", "[shrink][sdf][grad]") {
-  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.01, 0.02, -0.03), 16, 32);
+  const TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.01, 0.02, -0.03), 16, 32);
   const GridDistanceField field(build_signed_distance(sphere, 0.04, {0.12, {}}));
   SECTION("inside, on the surface and in the band") {
     std::mt19937 rng(9);
@@ -193,7 +129,7 @@ TEST_CASE("tricubic sampler: gradient and Hessian match finite differences", "[s
 }
 
 TEST_CASE("tricubic sampler: extrapolation keeps growing, sign and threads", "[shrink][sdf]") {
-  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d::Zero(), 16, 32);
+  const TriangleMesh sphere = uv_sphere(0.5, Vector3d::Zero(), 16, 32);
   const SignedDistanceGrid grid = build_signed_distance(sphere, 0.04);
   const GridDistanceField field(grid);
   REQUIRE(field.evaluate(Vector3d::Zero()) < -0.45);
@@ -228,7 +164,7 @@ TEST_CASE("tricubic sampler: extrapolation keeps growing, sign and threads", "[s
 }
 
 TEST_CASE("signed distance rejects a bad voxel size", "[shrink][sdf]") {
-  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d::Zero(), 8, 16);
+  const TriangleMesh sphere = uv_sphere(0.5, Vector3d::Zero(), 8, 16);
   REQUIRE_THROWS_AS(build_signed_distance(sphere, 0.0), std::invalid_argument);
   REQUIRE_THROWS_AS(build_signed_distance(sphere, std::nan("")), std::invalid_argument);
   SignedDistanceOptions cancel;

@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include "core/distance/point_triangle_distance.hpp"
+#include "core/mesh/primitives.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
 #include "shrink_oracles.hpp"
-#include "shrink_test_scenes.hpp"
 
 using namespace gr;
 
@@ -34,7 +34,7 @@ TEST_CASE("point-triangle distance against dense sampling", "[shrink][distance]"
 }
 
 TEST_CASE("winding number of a closed sphere", "[shrink][winding]") {
-  const TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.1, -0.2, 0.3));
+  const TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.1, -0.2, 0.3));
   const TriangleTree tree(sphere);
   REQUIRE(tree.winding_number(Vector3d(0.1, -0.2, 0.3)) == Approx(1.0).margin(1e-2));
   REQUIRE(tree.exact_winding_number(Vector3d(0.3, -0.1, 0.4)) == Approx(1.0).margin(1e-9));
@@ -43,36 +43,9 @@ TEST_CASE("winding number of a closed sphere", "[shrink][winding]") {
   REQUIRE(tree.distance_sq(Vector3d(0.1, -0.2, 1.3)) == Approx(0.25).epsilon(1e-3));
 }
 
-TEST_CASE("fast winding number and distance on the shared avatars", "[shrink][winding]") {
-  const std::string avatar_dir = GENERATE(as<std::string>{}, "foxgirl", "goblin");
-  const std::string garment_dir = avatar_dir == "foxgirl" ? "skirt" : "puffer";
-  const test::NormalizedScene scene = test::load_normalized_scene(garment_dir, avatar_dir);
-  const TriangleTree tree(scene.avatar);
-  const Eigen::AlignedBox3d box = tree.bounds();
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  double worst = 0.0;
-  int inside = 0;
-  for (int trial = 0; trial < 150; ++trial) {
-    const Vector3d p = box.min() + box.sizes().cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng)));
-    const double oracle = brute_force_winding_number(scene.avatar, p);
-    const double fast = tree.winding_number(p);
-    CAPTURE(avatar_dir, p.transpose(), oracle, fast);
-    REQUIRE(tree.exact_winding_number(p) == Approx(oracle).margin(1e-9));
-    REQUIRE(std::abs(fast - oracle) < 0.02);
-    worst = std::max(worst, std::abs(fast - oracle));
-    inside += oracle > 0.5;
-    REQUIRE(std::sqrt(tree.distance_sq(p)) == Approx(brute_force_distance(scene.avatar, p)).margin(1e-12));
-  }
-  // The samples reach both sides: the sign test below is not vacuous.
-  CHECK(inside > 5);
-  INFO("largest fast winding number error " << worst);
-  CHECK(worst < 0.01);
-}
-
 TEST_CASE("winding jumps along segments match winding number differences", "[shrink][winding]") {
   // On a closed surface the winding number changes only by its jumps.
-  TriangleMesh sphere = test::uv_sphere(0.5, Vector3d(0.02, -0.01, 0.03), 12, 24);
+  TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.02, -0.01, 0.03), 12, 24);
   const bool inverted = GENERATE(false, true);
   if (inverted) sphere.faces.col(1).swap(sphere.faces.col(2));
   CAPTURE(inverted);

@@ -3,7 +3,6 @@
 //
 //   contact_benchmark [--data DIR] [--dhat D] [--seconds S]
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -13,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "core/candidates/candidates.hpp"
+#include "core/common/stopwatch.hpp"
 #include "core/ccd/ccd.hpp"
 #include "core/potentials/barrier_potential.hpp"
 #include "tools/pipeline/normalization.hpp"
@@ -60,12 +60,11 @@ ContactScene load_contact_scene(const std::string& data, const SceneFiles& files
 template <typename Run>
 double median_ms(const Run& run, double seconds) {
   std::vector<double> times;
-  const auto start = std::chrono::steady_clock::now();
-  while (times.size() < 5 ||
-         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
-    const auto t0 = std::chrono::steady_clock::now();
+  const gr::Stopwatch total;
+  while (times.size() < 5 || total.seconds() < seconds) {
+    const gr::Stopwatch once;
     run();
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    times.push_back(once.milliseconds());
     if (times.size() >= 200) break;
   }
   std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());

@@ -1,6 +1,5 @@
 // Shrink benchmark: signed distance build time and memory per shared avatar and voxel
 // size, sampling throughput, and the time of each shrink mode per shared scene.
-#include <chrono>
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -13,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include "core/common/stopwatch.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "shrink/shrunk_avatar/levelset_shrink.hpp"
@@ -21,12 +21,6 @@
 #include "tools/pipeline/scene.hpp"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct SharedScene {
   std::string name;
@@ -64,13 +58,13 @@ double throughput(const gr::GridDistanceField& field, const gr::TriangleMesh& av
   std::vector<Eigen::Vector3d> points(1 << 20);
   for (auto& p : points) p = lo + (hi - lo).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
   std::vector<double> values(points.size());
-  const auto start = Clock::now();
+  const gr::Stopwatch stopwatch;
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
     Eigen::Vector3d g;
     Eigen::Matrix3d H;
     values[i] = derivatives ? field.evaluate(points[i], &g, &H) : field.evaluate(points[i]);
   });
-  return static_cast<double>(points.size()) / seconds_since(start);
+  return static_cast<double>(points.size()) / stopwatch.seconds();
 }
 
 /// The smallest edge and face of a mesh (normalized units): how close a shrink comes to
@@ -114,26 +108,27 @@ int main(int argc, char** argv) {
   for (const SharedScene& s : scenes)
     for (double h : voxel_sizes)
       for (const bool full_depth : {true, false}) {
-        // Stage times from the first report of each stage.
-        std::vector<std::pair<std::string, Clock::time_point>> stages;
+        // Stage times from the first report of each stage (seconds into the build).
+        gr::Stopwatch stopwatch;
+        std::vector<std::pair<std::string, double>> stages;
         gr::SignedDistanceOptions options;
         options.exterior_band = exterior_band;
         options.full_depth = full_depth;
         options.progress = [&](const std::string& stage, double) {
-          if (stages.empty() || stages.back().first != stage) stages.emplace_back(stage, Clock::now());
+          if (stages.empty() || stages.back().first != stage) stages.emplace_back(stage, stopwatch.seconds());
           return true;
         };
-        const auto start = Clock::now();
+        stopwatch.restart();
         // Process CPU time: a fair measure when other programs share the cores.
         const std::clock_t cpu_start = std::clock();
         const gr::SignedDistanceGrid grid = gr::build_signed_distance(s.avatar, h, options);
-        const double build = seconds_since(start);
+        const double build = stopwatch.seconds();
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-        stages.emplace_back("end", Clock::now());
+        stages.emplace_back("end", stopwatch.seconds());
         std::string split;
         for (std::size_t k = 0; k + 1 < stages.size(); ++k)
           split += (k ? " / " : "") +
-                   std::to_string(std::chrono::duration<double>(stages[k + 1].second - stages[k].second).count()).substr(0, 5);
+                   std::to_string(stages[k + 1].second - stages[k].second).substr(0, 5);
         const gr::GridDistanceField field(grid);
         std::printf("| %s | %.3g | %s | %.3f (%s) | %.3f | %zu | %.1f | %.3f | %.3g | %.3g |\n", s.name.c_str(), h,
                     full_depth ? "full" : "narrow", build, split.c_str(), cpu, grid.active_voxel_count(), grid.memory_bytes() / 1048576.0, -grid.min_value(),
@@ -144,7 +139,7 @@ int main(int argc, char** argv) {
   std::printf("\n| scene | mode | voxel | seconds (build + shrink) | result |\n| --- | --- | --- | --- | --- |\n");
   for (const SharedScene& s : scenes) {
     for (double h : voxel_sizes) {
-      const auto start = Clock::now();
+      const gr::Stopwatch stopwatch;
       std::string outcome;
       try {
         const gr::ShrinkResult r =
@@ -154,10 +149,10 @@ int main(int argc, char** argv) {
       } catch (const gr::NoValidShrinkError& e) {
         outcome = std::string("no valid shrink: ") + e.conflict().describe();
       }
-      std::printf("| %s | levelset | %.3g | %.3f | %s |\n", s.name.c_str(), h, seconds_since(start),
+      std::printf("| %s | levelset | %.3g | %.3f | %s |\n", s.name.c_str(), h, stopwatch.seconds(),
                   outcome.c_str());
     }
-    const auto start = Clock::now();
+    const gr::Stopwatch stopwatch;
     std::string outcome;
     try {
       const gr::ShrinkResult r = gr::shrink_to_skeleton(s.avatar, s.garment, s.source, s.target, s.weights);
@@ -172,7 +167,7 @@ int main(int argc, char** argv) {
     } catch (const gr::NoValidShrinkError& e) {
       outcome = std::string("no valid shrink: ") + e.conflict().describe();
     }
-    std::printf("| %s | skeleton | - | %.3f | %s |\n", s.name.c_str(), seconds_since(start), outcome.c_str());
+    std::printf("| %s | skeleton | - | %.3f | %s |\n", s.name.c_str(), stopwatch.seconds(), outcome.c_str());
   }
   return 0;
 }

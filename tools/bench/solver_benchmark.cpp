@@ -3,11 +3,11 @@
 // inflation of the skirt's source body, widened so it pushes through the skirt, from a
 // narrowed copy that is free of it. Scene normalized so the body is 2 units tall (Z up).
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "core/common/stopwatch.hpp"
 #include "core/energies/surface_shape_energy.hpp"
 #include "core/inflation/avatar_inflation.hpp"
 #include "core/io/obj_document.hpp"
@@ -19,10 +19,9 @@ namespace {
 
 template <typename Work>
 double milliseconds(int repeats, Work work) {
-  const auto start = std::chrono::steady_clock::now();
+  const gr::Stopwatch stopwatch;
   for (int i = 0; i < repeats; ++i) work();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-         repeats;
+  return stopwatch.milliseconds() / repeats;
 }
 
 /// Scales x and y about the vertical axis through the origin.

@@ -4,7 +4,6 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "core/common/stopwatch.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/mesh/primitives.hpp"
 #include "tools/pipeline/normalization.hpp"
@@ -139,10 +139,10 @@ int main(int argc, char** argv) {
     std::vector<double> seconds;
     gr::Certificate last;
     for (int r = 0; r < repeats; ++r) {
-      const auto start = std::chrono::steady_clock::now();
+      const gr::Stopwatch stopwatch;
       last = gr::certify_garment(c.garment, c.avatar, nlohmann::json::object(), options);
       gr::write_certificate(work + "/certificate.json", last);
-      seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      seconds.push_back(stopwatch.seconds());
     }
     std::sort(seconds.begin(), seconds.end());
     const gr::ValidationTotals t = last.validation.result.totals();

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "core/candidates/contact_mesh.hpp"
+#include "core/mesh/unique_edges.hpp"
 #include "validate/measure/surface_distance.hpp"
 
 namespace gr {

@@ -1,21 +1,21 @@
 #pragma once
 
-#include <chrono>
 #include <cstdio>
 #include <string>
 
 #include <fmt/format.h>
+
+#include "core/common/stopwatch.hpp"
 
 namespace gr {
 
 /// Progress lines on stderr: "[   1.234 s] stage: message". Silent when quiet.
 class Progress {
  public:
-  explicit Progress(bool quiet) : quiet_(quiet), start_(std::chrono::steady_clock::now()) {}
+  explicit Progress(bool quiet) : quiet_(quiet) {}
 
-  double elapsed_seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
+  /// Seconds since construction.
+  double elapsed_seconds() const { return stopwatch_.seconds(); }
 
   template <typename... Args>
   void log(const char* stage, fmt::format_string<Args...> format, Args&&... args) const {
@@ -29,19 +29,10 @@ class Progress {
 
  private:
   bool quiet_;
-  std::chrono::steady_clock::time_point start_;
+  Stopwatch stopwatch_;
 };
 
 /// Wall time of one stage, for the report.
-class StageTimer {
- public:
-  StageTimer() : start_(std::chrono::steady_clock::now()) {}
-  double seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-};
+using StageTimer = Stopwatch;
 
 }  // namespace gr

@@ -1,6 +1,5 @@
 #include "tools/pipeline/shrink_avatar.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/errors.hpp"
+#include "core/common/stopwatch.hpp"
 #include "core/io/atomic_file.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "shrink/shrunk_avatar/levelset_shrink.hpp"
@@ -20,9 +20,6 @@ namespace gr {
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 nlohmann::json point_json(const Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
@@ -70,7 +67,7 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
 }
 
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const Scene scene = load_scene(options.inputs);
   check_options(options, scene);
   prepare_output_folder(options.out_dir);
@@ -83,7 +80,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   run.report_path = (out / "report.json").string();
   nlohmann::json report;
   auto write_report = [&]() {
-    report["seconds"] = seconds_since(start);
+    report["seconds"] = stopwatch.seconds();
     write_file_atomically(run.report_path,
                           [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
   };
@@ -95,11 +92,11 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
                            {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
   try {
     if (options.mode == ShrinkMode::kLevelset) {
-      const auto grid_start = std::chrono::steady_clock::now();
+      const Stopwatch grid_stopwatch;
       SignedDistanceOptions grid_options;
       grid_options.progress = options.progress;
       const SignedDistanceGrid grid = build_signed_distance(avatar, options.voxel_size, grid_options);
-      run.grid_seconds = seconds_since(grid_start);
+      run.grid_seconds = grid_stopwatch.seconds();
       run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, options.progress);
       report["voxel_size"] = options.voxel_size;
       report["grid_seconds"] = run.grid_seconds;

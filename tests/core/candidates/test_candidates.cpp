@@ -12,6 +12,7 @@
 #include "core/distance/point_triangle_distance.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/mesh/simulation_mesh.hpp"
+#include "core/mesh/unique_edges.hpp"
 #include "test_support.hpp"
 
 using gr::MatrixX3d;

@@ -5,8 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include "../test_shapes.hpp"
-#include "core/candidates/contact_mesh.hpp"
 #include "core/candidates/fold_free_regions.hpp"
+#include "core/mesh/unique_edges.hpp"
 
 using gr::MatrixX3d;
 using gr::MatrixX3i;

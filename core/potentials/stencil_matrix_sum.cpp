@@ -1,4 +1,4 @@
-#include "core/potentials/stencil_assembly.hpp"
+#include "core/potentials/stencil_matrix_sum.hpp"
 
 #include <algorithm>
 

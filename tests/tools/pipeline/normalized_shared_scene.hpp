@@ -3,7 +3,6 @@
 #include <string>
 
 #include "core/io/rig_files.hpp"
-#include "core/mesh/primitives.hpp"
 #include "test_support.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/scene.hpp"
@@ -40,7 +39,5 @@ inline NormalizedScene load_normalized_scene(const std::string& garment_dir,
   out.skin_weights = scene.skin_weights;
   return out;
 }
-
-using gr::uv_sphere;
 
 }  // namespace gr::test
