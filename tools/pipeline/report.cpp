@@ -26,6 +26,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"voxel_size", p.voxel_size},
         {"fit_samples_per_face", p.solver.fit_samples_per_face},
         {"ccd_min_separation_ratio", p.solver.ccd.min_separation_ratio},
+        {"ccd_min_separation", p.solver.ccd.min_separation},
         {"self_contact", p.solver.self_contact},
         {"self_contact_everywhere", p.solver.self_contact_everywhere},
         {"inflation_step_length", p.solver.inflation_step_length},

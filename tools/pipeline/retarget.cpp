@@ -149,6 +149,12 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
   require_garment_free_of_itself(scene, self);
   report.scene_scale = normalized.normalization.avatar_to_scene.scale;
   report.lattice = normalized.lattice;
+  // The solver sees the avatar rounded to the lattice, the certificate the avatar as given.
+  // Rounding moves a point of the avatar by at most half a lattice cell's diagonal, so
+  // pairs kept a whole diagonal apart stay apart on both (a pair may otherwise creep,
+  // a fraction of its gap per CCD-bounded step, to well below the rounding).
+  double& min_separation = report.parameters.solver.ccd.min_separation;
+  min_separation = std::max(min_separation, std::sqrt(3.0) * normalized.lattice);
   // Progress starts once the inputs are known good, so bad input prints its error alone.
   run.progress.log("read", "{} on {}", run.options.inputs.garment, run.options.inputs.avatar);
   for (const auto& warning : scene.warnings) run.warn(warning);
