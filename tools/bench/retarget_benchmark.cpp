@@ -73,8 +73,8 @@ std::string csv_row(const Run& run) {
       p.solver.fit_samples_per_face, r.seconds.shrink,
       r.seconds.inflate, r.seconds.fit, r.seconds.certify, r.seconds.total,
       r.inflate_newton_iterations, r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb,
-      r.fit_error.mean, r.fit_error.p95, r.distortion.mean_edge_change,
-      r.distortion.max_edge_change, r.surface_energy_per_area, r.min_distance / r.scene_scale);
+      r.fit_error.mean, r.fit_error.p95, r.shape.mean_edge_change,
+      r.shape.max_edge_change, r.surface_energy_per_area, r.min_distance / r.scene_scale);
 }
 
 const std::vector<std::string> kTableColumns = {
@@ -96,8 +96,8 @@ std::vector<std::string> table_row(const Run& run) {
           fmt::format("{}", r.al_rounds),
           fmt::format("{:.0f}", r.peak_memory_mb),
           fmt::format("{:.3g} / {:.3g}", r.fit_error.mean, r.fit_error.p95),
-          fmt::format("{:.2f}% / {:.2f}%", 100.0 * r.distortion.mean_edge_change,
-                      100.0 * r.distortion.max_edge_change),
+          fmt::format("{:.2f}% / {:.2f}%", 100.0 * r.shape.mean_edge_change,
+                      100.0 * r.shape.max_edge_change),
           fmt::format("{:.3g}", r.min_distance / r.scene_scale)};
 }
 

@@ -7,10 +7,15 @@
 namespace gr {
 
 struct ScenePaths;
+struct ShapeThresholds;
 
 /// The options naming a scene's files: --garment, --avatar, --out (all required), and the
 /// optional --source-skeleton / --target-skeleton pair and --skin-weights.
 void add_scene_options(CLI::App& command, ScenePaths& inputs, std::string& out_dir);
+
+/// The shape-check options shared by retarget and validate: --shape-check on|off and one
+/// option per threshold, written into `thresholds` (whose values are the defaults shown).
+void add_shape_check_options(CLI::App& command, ShapeThresholds& thresholds);
 
 /// Each subcommand registers itself on the root app; its callback stores the exit code.
 void add_retarget_command(CLI::App& root, int& exit_code);

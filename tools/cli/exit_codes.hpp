@@ -11,6 +11,9 @@ enum ExitCode : int {
   kExitSolverFailure = 4,   ///< the solver did not converge or met a non-finite energy
   kExitOutputError = 5,     ///< an output file or folder could not be written
   kExitInternalError = 6,   ///< a bug: please report it with the inputs
+  /// certified and written, but the garment's shape changed beyond the shape thresholds
+  /// (retarget), or the garment's shape differs from --source beyond them (validate)
+  kExitShapeChanged = 7,
 };
 
 }  // namespace gr

@@ -15,6 +15,7 @@ int exit_code_for(RetargetStatus status) {
     case RetargetStatus::kNotCertified: return kExitIntersections;
     case RetargetStatus::kNoValidShrink: return kExitNoValidShrink;
     case RetargetStatus::kSolverFailure: return kExitSolverFailure;
+    case RetargetStatus::kShapeChanged: return kExitShapeChanged;
   }
   return kExitInternalError;
 }
@@ -78,6 +79,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "--self-contact-everywhere", [&o](std::int64_t) { o.self_contact_everywhere = true; },
       "Model garment self-contact also inside regions that provably cannot fold onto\n"
       "themselves during a step (slower; the same guarantee)");
+  add_shape_check_options(*cmd, options->shape_thresholds);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");
@@ -92,7 +94,8 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "OUT/report.html (both, beside a 3D view of the input and output garments; opens\n"
       "from disk with no network).\n"
       "Exit codes: 0 certified, 1 certification failed, 2 bad input, 3 no valid shrink,\n"
-      "4 solver failure, 5 output not writable, 6 internal error.");
+      "4 solver failure, 5 output not writable, 6 internal error, 7 certified and written\n"
+      "but the garment's shape changed beyond the shape thresholds.");
   cmd->callback([options, shrink_mode, quality, &exit_code]() {
     if (!shrink_mode->empty()) options->shrink_mode = parse_shrink_mode(*shrink_mode);
     options->quality = parse_quality(*quality);

@@ -3,9 +3,14 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "core/common/errors.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "validate/certify/validation.hpp"
+#include "validate/measure/shape_change.hpp"
+#include "validate/report/file_digest.hpp"
 #include "validate/report/marks_file.hpp"
 #include "validate/report/validation_report.hpp"
 #include "tools/pipeline/result_page.hpp"
@@ -22,7 +27,31 @@ struct ValidateCommandOptions {
   std::string html;
   std::optional<double> threshold;
   std::size_t max_listed = kDefaultListedIssues;
+  std::vector<std::string> sources;  ///< per garment, its source garment (empty: no shape check)
+  ShapeThresholds shape_thresholds;
 };
+
+/// Each garment's shape against its source: the same vertices in the same order and the same
+/// faces, in the same units.
+/// @throw InputError when a source is unreadable or is not the same mesh.
+std::vector<ShapeChange> measure_against_sources(const Validation& validation,
+                                                 const std::vector<std::string>& sources) {
+  std::vector<ShapeChange> changes;
+  for (std::size_t g = 0; g < sources.size(); ++g) {
+    const CheckedFile source = read_checked_file(sources[g]);
+    const TriangleMesh& garment = validation.garments[g].mesh;
+    if (source.mesh.vertices.rows() != garment.vertices.rows() || source.mesh.faces != garment.faces)
+      throw InputError(sources[g], 0,
+                       fmt::format("not the source of {}: {} vertices and {} faces against {} and "
+                                   "{}, or other faces (the shape check needs the same vertex "
+                                   "order and faces)",
+                                   validation.garments[g].path, source.mesh.vertices.rows(),
+                                   source.mesh.faces.rows(), garment.vertices.rows(),
+                                   garment.faces.rows()));
+    changes.push_back(measure_shape_change(source.mesh, garment.vertices));
+  }
+  return changes;
+}
 
 }  // namespace
 
@@ -47,18 +76,52 @@ void add_validate_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--max-listed", options->max_listed,
                   "How many pairs, faces or vertices each report list holds")
       ->capture_default_str();
+  cmd->add_option("--source", options->sources,
+                  "The garment's source OBJ (same vertex order and faces; one per --garment, in "
+                  "its order): report how the shape changed (report `garments[].shape`), and "
+                  "exit with 7 beyond the thresholds below")
+      ->take_all();
+  add_shape_check_options(*cmd, options->shape_thresholds);
+  cmd->footer("Exit codes: 0 certified (and, with --source, shape within its thresholds), 1\n"
+              "intersections found, 2 bad input, 7 certified but the shape changed beyond the\n"
+              "thresholds.");
   cmd->callback([options, &exit_code]() {
+    if (!options->sources.empty() && options->sources.size() != options->garments.size())
+      throw InputError(options->sources.front(), 0,
+                       fmt::format("{} --source files for {} --garment files: give one per garment",
+                                   options->sources.size(), options->garments.size()));
     ValidationOptions validation_options;
     validation_options.threshold = options->threshold;
     const Validation validation =
         validate_files(options->garments, options->avatar, validation_options);
-    if (!options->report.empty())
-      write_json_file(options->report, validation_report(validation, options->max_listed));
+    const std::vector<ShapeChange> shapes = measure_against_sources(validation, options->sources);
+    std::vector<std::string> shape_warnings;
+    nlohmann::ordered_json report = validation_report(validation, options->max_listed);
+    for (std::size_t g = 0; g < shapes.size(); ++g) {
+      nlohmann::ordered_json shape = shape_report(shapes[g], options->shape_thresholds);
+      shape["source"] = {{"path", options->sources[g]}, {"sha256", sha256_of_file(options->sources[g])}};
+      report["garments"][g]["shape"] = shape;
+      for (const std::string& violation : shape_violations(shapes[g], options->shape_thresholds))
+        shape_warnings.push_back(fmt::format("garment {}: shape changed beyond its threshold: {}",
+                                             g, violation));
+    }
+    if (!options->report.empty()) write_json_file(options->report, report);
     if (!options->marks.empty()) write_marks_obj(options->marks, validation);
-    if (!options->html.empty())
-      write_validation_page(options->html, validation, validation_report(validation, options->max_listed));
-    std::printf("%s\n", validation_summary(validation).c_str());
-    exit_code = validation.result.certified() ? kExitSuccess : kExitIntersections;
+    if (!options->html.empty()) write_validation_page(options->html, validation, report);
+    for (const std::string& warning : shape_warnings)
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    std::string summary = validation_summary(validation);
+    for (std::size_t g = 0; g < shapes.size(); ++g)
+      summary += fmt::format("; garment {} shape: scale {:.3g}, edge change mean {:.3g} p95 {:.3g}, "
+                             "area {:+.3g}, loops moved {:.3g}",
+                             g, shapes[g].scale, shapes[g].mean_edge_change,
+                             shapes[g].p95_edge_change, shapes[g].area_change,
+                             shapes[g].loop_displacement);
+    if (!shape_warnings.empty()) summary += "; SHAPE CHANGED beyond its thresholds";
+    std::printf("%s\n", summary.c_str());
+    exit_code = !validation.result.certified() ? kExitIntersections
+                : shape_warnings.empty()       ? kExitSuccess
+                                               : kExitShapeChanged;
   });
 }
 

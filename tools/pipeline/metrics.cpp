@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numeric>
 
-#include "core/mesh/unique_edges.hpp"
 #include "validate/measure/surface_distance.hpp"
 
 namespace gr {
@@ -33,25 +32,6 @@ FitError measure_fit_error(const TriangleMesh& garment, const std::vector<bool>&
   std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(rank), d.end());
   error.p95 = d[rank];
   return error;
-}
-
-Distortion measure_distortion(const Eigen::Ref<const MatrixX3d>& rest,
-                              const Eigen::Ref<const MatrixX3d>& deformed,
-                              const Eigen::Ref<const MatrixX3i>& faces) {
-  const MatrixX2i edges = unique_edges(faces);
-  Distortion out;
-  std::size_t counted = 0;
-  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
-    const double rest_length = (rest.row(edges(e, 0)) - rest.row(edges(e, 1))).norm();
-    if (!(rest_length > 0.0)) continue;
-    const double length = (deformed.row(edges(e, 0)) - deformed.row(edges(e, 1))).norm();
-    const double change = std::abs(length - rest_length) / rest_length;
-    out.mean_edge_change += change;
-    out.max_edge_change = std::max(out.max_edge_change, change);
-    ++counted;
-  }
-  if (counted > 0) out.mean_edge_change /= static_cast<double>(counted);
-  return out;
 }
 
 }  // namespace gr

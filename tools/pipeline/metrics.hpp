@@ -20,15 +20,4 @@ struct FitError {
 FitError measure_fit_error(const TriangleMesh& garment, const std::vector<bool>& fit_faces,
                            const TriangleMesh& avatar);
 
-/// How much the garment's shape changed: relative change of every edge length.
-struct Distortion {
-  double mean_edge_change = 0.0;  ///< mean of |l - l_rest| / l_rest
-  double max_edge_change = 0.0;
-};
-
-/// @param rest, deformed #V×3 positions of the same garment; faces #F×3.
-Distortion measure_distortion(const Eigen::Ref<const MatrixX3d>& rest,
-                              const Eigen::Ref<const MatrixX3d>& deformed,
-                              const Eigen::Ref<const MatrixX3i>& faces);
-
 }  // namespace gr

@@ -4,6 +4,17 @@
 
 namespace gr {
 
+namespace {
+
+nlohmann::json shape_json(const RetargetReport& r) {
+  nlohmann::json shape = shape_report(r.shape, r.shape_thresholds);
+  shape["surface_energy_per_area"] = r.surface_energy_per_area;
+  shape["units"] = "normalized scene units for both garments";
+  return shape;
+}
+
+}  // namespace
+
 nlohmann::json to_json(const RetargetReport& r) {
   using nlohmann::json;
   const auto& p = r.parameters;
@@ -63,10 +74,7 @@ nlohmann::json to_json(const RetargetReport& r) {
        {{"loop_offsets", r.loop_offsets},
         {"meaning", "per boundary loop held along its bone: RMS offset from its place on the "
                     "bone, in lengths of the bone"}}},
-      {"distortion",
-       {{"mean_edge_change", r.distortion.mean_edge_change},
-        {"max_edge_change", r.distortion.max_edge_change},
-        {"surface_energy_per_area", r.surface_energy_per_area}}},
+      {"shape", shape_json(r)},
       {"modelled",
        {{"terms", r.terms},
         {"self_contact", r.self_contact},

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "validate/measure/shape_change.hpp"
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
@@ -40,7 +41,10 @@ struct RetargetReport {
   double scene_scale = 1.0;       ///< normalized units per avatar file unit
   double lattice = 0.0;           ///< normalized coordinates are multiples of this (0: exact)
   FitError fit_error;             ///< avatar file units
-  Distortion distortion;
+  /// The written garment against the input garment, both in normalized units (so with
+  /// skeletons the change of size the skeletons imply is already taken out).
+  ShapeChange shape;
+  ShapeThresholds shape_thresholds;  ///< as applied (see RetargetOptions::shape_thresholds)
   double surface_energy_per_area = 0.0;
 
   // What was modelled, and why.

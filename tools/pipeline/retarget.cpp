@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -336,7 +337,8 @@ void write_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
   run.report().seconds.write = timer.seconds();
 }
 
-/// Certify: the exact check of the file as written, against the avatar file.
+/// Certify: the exact check of the file as written, against the avatar file, with the
+/// shape change beside it.
 Certificate certify_stage(Run& run) {
   const StageTimer timer;
   const RetargetOptions& options = run.options;
@@ -347,6 +349,7 @@ Certificate certify_stage(Run& run) {
       {"output",
        {{"path", run.result.garment_path}, {"sha256", sha256_of_file(run.result.garment_path)}}},
       {"parameters", to_json(run.report())["parameters"]},
+      {"shape", shape_report(run.report().shape, run.report().shape_thresholds)},
       {"quality", to_string(options.quality)}};
   const Certificate certificate = certify_garment(run.result.garment_path, options.inputs.avatar, extra);
   write_certificate((run.out / "certificate.json").string(), certificate);
@@ -355,7 +358,39 @@ Certificate certify_stage(Run& run) {
   return certificate;
 }
 
-/// Measure: fit error and distortion of the written garment; the one-line summary.
+/// The shape limits that apply to a run. With skeletons the target's proportions set the
+/// garment's size and place (goblin_puffer legitimately grows to 1.51 times its edge
+/// lengths, 2.2 times its area, and its collar moves 0.28 of the diagonal, with its loops
+/// where L_pos puts them along their bones): only the scale-free edge changes are checked,
+/// and the loops' places along their bones are checked by the loop-offset warning.
+ShapeThresholds applied_shape_thresholds(ShapeThresholds limits, bool has_skeletons) {
+  if (!has_skeletons) return limits;
+  constexpr double kOff = std::numeric_limits<double>::infinity();
+  limits.min_scale = 0.0;
+  limits.max_scale = kOff;
+  limits.area_change = kOff;
+  limits.loop_displacement = kOff;
+  return limits;
+}
+
+/// Shape: the garment to be written against the input, both normalized; each exceeded
+/// threshold a warning.
+void shape_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
+  RetargetReport& report = run.report();
+  report.shape = measure_shape_change(in.normalized.garment, garment);
+  report.shape_thresholds = applied_shape_thresholds(
+      run.options.shape_thresholds, in.scene.source_skeleton.has_value());
+  run.progress.log("shape", "scale {:.3f}, scale-free edge change mean {:.3f} p95 {:.3f}, area "
+                   "{:+.3f}, boundary loops moved up to {:.3f} of the diagonal",
+                   report.shape.scale, report.shape.mean_edge_change,
+                   report.shape.p95_edge_change, report.shape.area_change,
+                   report.shape.loop_displacement);
+  for (const std::string& violation : shape_violations(report.shape, report.shape_thresholds))
+    run.warn("shape changed beyond its threshold: " + violation +
+             " (see --shape-check and the --max-* shape options)");
+}
+
+/// Measure: fit error of the written garment; the one-line summary.
 std::string measure_stage(Run& run, const Inputs& in, const MatrixX3d& garment,
                           const Certificate& certificate, double total_seconds) {
   RetargetReport& report = run.report();
@@ -365,7 +400,6 @@ std::string measure_stage(Run& run, const Inputs& in, const MatrixX3d& garment,
   const std::vector<bool> fits =
       fit_face_mask(rest.faces, static_cast<int>(rest.vertices.rows()), in.scene.no_fit);
   report.fit_error = measure_fit_error(written, fits, in.scene.avatar.mesh);
-  report.distortion = measure_distortion(rest.vertices, garment, rest.faces);
   const auto totals = certificate.validation.result.totals();
   // The solver sees only pairs within dhat; a garment that ended further away takes the
   // certificate's clearance, so the report never holds an infinity.
@@ -437,11 +471,16 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
 
   write_stage(run, in, fit.garment);
+  shape_stage(run, in, fit.garment);
   const Certificate certificate = certify_stage(run);
-  const std::string summary = measure_stage(run, in, fit.garment, certificate, total.seconds());
+  std::string summary = measure_stage(run, in, fit.garment, certificate, total.seconds());
   run.progress.log("certify", "{}", summary);
-  RetargetResult done = finish(
-      report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified, summary);
+  RetargetStatus status = report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified;
+  if (report.certified && !shape_violations(report.shape, report.shape_thresholds).empty()) {
+    status = RetargetStatus::kShapeChanged;
+    summary += "; SHAPE CHANGED beyond its thresholds";
+  }
+  RetargetResult done = finish(status, summary);
   write_retarget_pages(options.out_dir, options.png, in.scene, in.normalized.normalization,
                        certificate, done.report);
   return done;

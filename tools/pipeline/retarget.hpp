@@ -18,6 +18,9 @@ struct RetargetOptions {
   std::optional<ShrinkMode> shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
   Quality quality = Quality::kBalanced;
   ParameterOverrides overrides;          ///< individual knobs over the preset
+  /// Limits on the written garment's change of shape from the input (report.json `shape`);
+  /// beyond them the run ends with RetargetStatus::kShapeChanged.
+  ShapeThresholds shape_thresholds;
   int threads = 0;             ///< 0: all cores
   bool frames = false;         ///< write intermediate garment/avatar OBJs
   bool png = false;            ///< also write front.png and side.png beside report.html
@@ -25,7 +28,15 @@ struct RetargetOptions {
 };
 
 /// How a retarget run ended; the command line maps it to an exit code.
-enum class RetargetStatus { kCertified, kNotCertified, kNoValidShrink, kSolverFailure };
+/// kShapeChanged: certified, written, but the garment's shape changed beyond
+/// RetargetOptions::shape_thresholds (each violation is a warning in the report).
+enum class RetargetStatus {
+  kCertified,
+  kNotCertified,
+  kNoValidShrink,
+  kSolverFailure,
+  kShapeChanged
+};
 
 struct RetargetResult {
   RetargetStatus status = RetargetStatus::kSolverFailure;

@@ -143,9 +143,13 @@ std::vector<Section> retarget_sections(const ReportPageData& data) {
   sections.push_back(clearance);
 
   Section shape{"Shape change", {}, ""};
-  shape.rows.push_back({"mean edge-length change", format_percent(number_at(r, "/distortion/mean_edge_change"))});
-  shape.rows.push_back({"largest edge-length change", format_percent(number_at(r, "/distortion/max_edge_change"))});
-  if (const auto e = number_at(r, "/distortion/surface_energy_per_area"))
+  if (const auto scale = number_at(r, "/shape/scale"))
+    shape.rows.push_back({"scale (median edge-length ratio)", format_number(*scale)});
+  shape.rows.push_back({"scale-free mean edge-length change", format_percent(number_at(r, "/shape/mean_edge_change"))});
+  shape.rows.push_back({"scale-free 95th-percentile edge-length change", format_percent(number_at(r, "/shape/p95_edge_change"))});
+  shape.rows.push_back({"area change", format_percent(number_at(r, "/shape/area_change"))});
+  shape.rows.push_back({"largest boundary-loop displacement (of the diagonal)", format_percent(number_at(r, "/shape/loop_displacement"))});
+  if (const auto e = number_at(r, "/shape/surface_energy_per_area"))
     shape.rows.push_back({"surface energy per area", format_number(*e)});
   if (const auto* loops = find(r, "/position/loop_offsets"); loops && loops->is_array() && !loops->empty()) {
     double worst = 0.0;

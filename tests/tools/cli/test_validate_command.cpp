@@ -140,3 +140,69 @@ TEST_CASE("validate: bad input exits 2 with one error line", "[tools][cli][valid
     CHECK_FALSE(std::filesystem::exists(dir / "report.json"));
   }
 }
+
+namespace {
+
+/// The bundled scene's garment with every `v` line mapped by an affine map about
+/// `centre`: scaled by `scale`, then its y squeezed by `squeeze` (an affine map keeps it
+/// free of self-intersection, so only the shape check can object).
+std::string crushed_copy(const std::filesystem::path& path, const std::string& source,
+                         double scale, double squeeze) {
+  std::istringstream in(slurp(source));
+  std::ostringstream out;
+  std::string line;
+  const double centre[3] = {0.35, 0.87, -0.2};
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) != 0) {
+      out << line << '\n';
+      continue;
+    }
+    std::istringstream fields(line.substr(2));
+    double p[3];
+    fields >> p[0] >> p[1] >> p[2];
+    for (int k = 0; k < 3; ++k) p[k] = centre[k] + scale * (k == 1 ? squeeze : 1.0) * (p[k] - centre[k]);
+    out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  }
+  return write_text(path, out.str());
+}
+
+}  // namespace
+
+TEST_CASE("validate --source: a crushed garment exits 7, an unchanged one 0",
+          "[tools][cli][validate][shape]") {
+  const auto dir = gr::test::fresh_temp_dir("cli_validate_shape");
+  const std::string source = gr::test::project_file("tools/scenes/dress_form/garment.obj");
+  const std::string avatar = write_text(dir / "avatar.obj", kAvatar);  // clear of the garment
+  const std::string crushed = crushed_copy(dir / "crushed.obj", source, 0.3, 0.3);
+  const std::string quoted_source = "\"" + source + "\"";
+
+  const Run same = validate(dir, "--garment " + quoted_source + " --avatar " + avatar +
+                                     " --source " + quoted_source + " --report \"" +
+                                     (dir / "same.json").string() + "\"");
+  CHECK(same.exit_code == 0);
+  const auto same_report = nlohmann::json::parse(slurp(dir / "same.json"));
+  CHECK(same_report["garments"][0]["shape"]["scale"] == 1.0);
+  CHECK(same_report["garments"][0]["shape"]["within_thresholds"] == true);
+
+  const Run flagged = validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " +
+                                        quoted_source + " --report \"" +
+                                        (dir / "crushed.json").string() + "\"");
+  CHECK(flagged.exit_code == 7);
+  CHECK(flagged.out.find("SHAPE CHANGED") != std::string::npos);
+  CHECK(flagged.err.find("scale") != std::string::npos);
+  const auto report = nlohmann::json::parse(slurp(dir / "crushed.json"));
+  CHECK(report["certified"] == true);
+  const auto& shape = report["garments"][0]["shape"];
+  CHECK(shape["scale"].get<double>() < 0.3);
+  CHECK(shape["mean_edge_change"].get<double>() > 0.25);
+  CHECK(shape["within_thresholds"] == false);
+  CHECK(shape["source"]["sha256"] == gr::sha256_of_file(source));
+
+  const Run off = validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " +
+                                    quoted_source + " --shape-check off");
+  CHECK(off.exit_code == 0);
+
+  const Run wrong = validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " + avatar);
+  CHECK(wrong.exit_code == 2);
+  CHECK(wrong.err.find("not the source") != std::string::npos);
+}

@@ -36,7 +36,7 @@ nlohmann::json sample_report() {
           {"seconds", {{"read", 0.01}, {"shrink", 0.5}, {"inflate", 1.25}, {"fit", 2.5}, {"total", 4.75}}},
           {"fit_error", {{"mean", 0.00123}, {"p95", 0.00456}}},
           {"min_distance", {{"avatar_units", 0.00077}}},
-          {"distortion", {{"mean_edge_change", 0.1234}, {"max_edge_change", 0.5}}},
+          {"shape", {{"scale", 1.0}, {"mean_edge_change", 0.1234}, {"p95_edge_change", 0.5}}},
           {"certified", true},
           {"warnings", {"fit stopped <early> & \"soon\""}}};
 }
