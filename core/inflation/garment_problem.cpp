@@ -50,6 +50,11 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
                                     s.source_joints, s.target_joints, s.bones, s.skirt);
     position_ = &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_,
                                           layout_);
+  } else if (stage == Stage::kFit) {
+    if (parameters.w_stretch > 0.0) add_term<StretchEnergy>(parameters.w_stretch, scene.garment, layout_);
+    if (parameters.w_anchor > 0.0)
+      add_term<AnchorEnergy>(parameters.w_anchor, scene.garment.vertices,
+                             boundary_loop_vertices(scene.garment.faces), layout_);
   }
   if (stage == Stage::kFit)
     add_term<FitEnergy>(parameters.w_fit, scene.garment, scene.no_fit, *scene.distance_field,

@@ -6,11 +6,13 @@
 #include <optional>
 #include <vector>
 
+#include "core/energies/anchor_energy.hpp"
 #include "core/energies/contact_energy.hpp"
 #include "core/energies/energy_term.hpp"
 #include "core/energies/distance_field.hpp"
 #include "core/energies/fit_energy.hpp"
 #include "core/energies/position_energy.hpp"
+#include "core/energies/stretch_energy.hpp"
 #include "core/energies/surface_shape_energy.hpp"
 #include "core/inflation/avatar_constraint.hpp"
 #include "core/inflation/retarget_parameters.hpp"

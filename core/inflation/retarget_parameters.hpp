@@ -17,6 +17,14 @@ struct RetargetParameters {
   double fit_dhat = 0.0;
   double fit_support() const { return fit_dhat > 0.0 ? fit_dhat : dhat; }
   double w_pos = 10.0;        ///< only used when skeletons are given
+  /// Without skeletons nothing else holds the garment's size and place in the fit, which
+  /// pulls every fit face near the body onto it, so two fit-step terms do: edge stretch
+  /// against the input garment (StretchEnergy) and its boundary loops held at their input
+  /// places (AnchorEnergy). Both are off with skeletons and in the inflation, where the
+  /// garment must move wherever the avatar grows through it (held there, a cap inside a
+  /// sphere stalled the push on t before t = 1).
+  double w_stretch = 10.0;
+  double w_anchor = 10.0;
   double w_fit = 2.0;         ///< fit step only
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;   ///< model garment–garment contact

@@ -62,6 +62,14 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--w-fit", o.w_fit, "Fit term weight")->check(CLI::NonNegativeNumber);
   cmd->add_option("--w-pos", o.w_pos, "Boundary-loop position weight (with skeletons)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--w-stretch", o.w_stretch,
+                  "Edge-stretch weight against the input garment, without skeletons only "
+                  "(default 10; 0 switches it off)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--w-anchor", o.w_anchor,
+                  "Weight holding boundary loops at their input places, without skeletons "
+                  "only (default 10; 0 switches it off)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-newton-iterations", o.max_newton_iterations, "Iteration cap per Newton solve")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-al-rounds", o.max_al_rounds, "Cap on augmented-Lagrangian rounds")

@@ -60,6 +60,8 @@ void ParameterOverrides::apply_to(PipelineParameters& p) const {
   if (w_contact) s.w_contact = *w_contact;
   if (w_fit) s.w_fit = *w_fit;
   if (w_pos) s.w_pos = *w_pos;
+  if (w_stretch) s.w_stretch = *w_stretch;
+  if (w_anchor) s.w_anchor = *w_anchor;
   if (eps_tol) {
     s.newton.gradient_tolerance = *eps_tol;
     s.newton.energy_tolerance = energy_tolerance_for(*eps_tol);

@@ -28,6 +28,8 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"w_contact", p.solver.w_contact},
         {"w_fit", p.solver.w_fit},
         {"w_pos", p.solver.w_pos},
+        {"w_stretch", p.solver.w_stretch},
+        {"w_anchor", p.solver.w_anchor},
         {"eps_tol", p.solver.newton.gradient_tolerance},
         {"step_tolerance", p.solver.newton.step_tolerance},
         {"energy_tolerance", p.solver.newton.energy_tolerance},

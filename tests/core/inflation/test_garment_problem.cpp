@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "core/energies/energy_checks.hpp"
 #include "core/energies/analytic_fields.hpp"
 #include "core/inflation/garment_problem.hpp"
@@ -66,6 +68,11 @@ TEST_CASE("garment problem: inflation derivatives over [t, Vg] with contact, AL 
   RetargetParameters parameters;
   GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
   REQUIRE(problem.loop_bones().size() == 1);
+  // With skeletons L_pos holds size and place; the skeleton-free terms stay out.
+  const std::vector<std::string> names = problem.term_names();
+  CHECK(std::count(names.begin(), names.end(), "position") == 1);
+  CHECK(std::count(names.begin(), names.end(), "stretch") == 0);
+  CHECK(std::count(names.begin(), names.end(), "anchor") == 0);
   problem.constraint().lambda1 = 8.0;
   problem.constraint().lambda2 = 3.0;
   std::srand(3);
@@ -83,6 +90,11 @@ TEST_CASE("garment problem: fit derivatives over Vg with contact and L_fit", "[f
   RetargetParameters parameters;
   GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kFit);
   REQUIRE(problem.dof_count() == 3 * scene.garment.vertices.rows());
+  // No skeletons: the fit holds the garment's edge lengths and boundary loops instead.
+  const std::vector<std::string> names = problem.term_names();
+  CHECK(std::count(names.begin(), names.end(), "stretch") == 1);
+  CHECK(std::count(names.begin(), names.end(), "anchor") == 1);
+  CHECK(std::count(names.begin(), names.end(), "position") == 0);
   std::srand(4);
   Eigen::VectorXd x = problem.layout().pack(1.0, scene.garment.vertices);
   x += 2e-4 * Eigen::VectorXd::Random(x.size());
