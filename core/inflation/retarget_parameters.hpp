@@ -23,7 +23,7 @@ struct RetargetParameters {
   /// places (AnchorEnergy). Both are off with skeletons and in the inflation, where the
   /// garment must move wherever the avatar grows through it (held there, a cap inside a
   /// sphere stalled the push on t before t = 1).
-  double w_stretch = 10.0;
+  double w_stretch = 1.0;
   double w_anchor = 10.0;
   double w_fit = 2.0;         ///< fit step only
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6

@@ -64,7 +64,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--w-stretch", o.w_stretch,
                   "Edge-stretch weight against the input garment, without skeletons only "
-                  "(default 10; 0 switches it off)")
+                  "(default 1; 0 switches it off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--w-anchor", o.w_anchor,
                   "Weight holding boundary loops at their input places, without skeletons "
