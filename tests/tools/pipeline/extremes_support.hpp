@@ -62,15 +62,21 @@ TriangleMesh submesh(const TriangleMesh& mesh, Keep keep) {
 }
 
 /// Every null in a JSON document outside the keys the report format documents as
-/// possibly null ("threshold" and "near_vertices" without --threshold): a NaN or an
+/// possibly null ("threshold" and "near_vertices" without --threshold, and a shape
+/// threshold that is switched off, such as the size limits with skeletons): a NaN or an
 /// infinity written by nlohmann-json shows up as null.
 inline void collect_nulls(const nlohmann::json& json, const std::string& where,
                           std::vector<std::string>& nulls) {
+  const std::string shape_limits = "/shape/thresholds";
+  const bool in_shape_limits = where.size() >= shape_limits.size() &&
+                               where.compare(where.size() - shape_limits.size(),
+                                             shape_limits.size(), shape_limits) == 0;
   if (json.is_null()) {
     nulls.push_back(where);
   } else if (json.is_object()) {
     for (const auto& [key, value] : json.items())
-      if (key != "threshold" && key != "near_vertices") collect_nulls(value, where + "/" + key, nulls);
+      if (key != "threshold" && key != "near_vertices" && !(in_shape_limits && value.is_null()))
+        collect_nulls(value, where + "/" + key, nulls);
   } else if (json.is_array()) {
     for (std::size_t i = 0; i < json.size(); ++i)
       collect_nulls(json[i], where + "/" + std::to_string(i), nulls);
