@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/wait.h>
@@ -33,10 +34,17 @@ inline std::string read_text(const std::filesystem::path& path) {
   return buffer.str();
 }
 
-/// Runs the command-line program with `args`, capturing stdout and stderr.
-inline CliRun run_cli(const std::vector<std::string>& args, const std::string& capture_name) {
+/// An environment variable set for one run: name and value.
+using EnvironmentVariable = std::pair<std::string, std::string>;
+
+/// Runs the command-line program with `args` and, on top of the test's own environment,
+/// `environment`, capturing stdout and stderr.
+inline CliRun run_cli(const std::vector<std::string>& args, const std::string& capture_name,
+                      const std::vector<EnvironmentVariable>& environment = {}) {
   const auto dir = fresh_temp_dir("cli_" + capture_name);
-  std::string command = shell_quote(GR_CLI_PATH);
+  std::string command;
+  for (const auto& [name, value] : environment) command += name + "=" + shell_quote(value) + " ";
+  command += shell_quote(GR_CLI_PATH);
   for (const auto& a : args) command += " " + shell_quote(a);
   command += " >" + shell_quote((dir / "out.txt").string()) + " 2>" +
              shell_quote((dir / "err.txt").string()) + " </dev/null";

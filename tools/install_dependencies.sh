@@ -3,9 +3,13 @@
 # present. Runs apt-get update once, only when something is missing.
 set -euo pipefail
 
+# libatlas3-base: the CPU-independent BLAS that CHOLMOD runs on (GR_PORTABLE_BLAS).
+# libopenblas0-pthread: the system's default BLAS, so the determinism tests would see it if
+# the build stopped using ATLAS. libclang-rt-14-dev: libFuzzer and the sanitizers' runtimes
+# for the fuzz test (clang only recommends them, and recommends are not installed).
 packages=(
-  build-essential cmake ninja-build python3 python3-venv clang clang-format
-  libeigen3-dev libsuitesparse-dev libopenblas0-pthread
+  build-essential cmake ninja-build python3 python3-venv clang clang-format libclang-rt-14-dev
+  libeigen3-dev libsuitesparse-dev libatlas3-base libopenblas0-pthread
   libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
   catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
   libpng-dev chromium

@@ -7,7 +7,9 @@
 
 namespace gr {
 
-/// Sparse Cholesky (CHOLMOD supernodal LLT) that owns its factorization. The symbolic
+/// Sparse Cholesky (CHOLMOD supernodal LLT) that owns its factorization. Its dense kernels
+/// run on the BLAS the build links (GR_PORTABLE_BLAS, on by default: ATLAS's generic build),
+/// so the factor of a given matrix is the same to the bit on every x86-64 CPU. The symbolic
 /// analysis is kept while the sparsity pattern of the matrices it is given stays within the
 /// analysed pattern: a matrix whose pattern is a subset is padded with explicit zeros.
 /// When a matrix brings new entries the analysis is redone on the union of the two
