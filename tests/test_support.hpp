@@ -55,8 +55,8 @@ class TempDirCleaner {
 /// A fresh, empty temporary folder for one test; per process, since CTest runs test
 /// cases in parallel processes. Removed with its contents when the process ends.
 inline std::filesystem::path fresh_temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("gr_test_" + name + "_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("gr_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   TempDirCleaner::instance().add(dir);

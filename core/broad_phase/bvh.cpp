@@ -99,13 +99,15 @@ void Bvh::build(std::vector<Eigen::AlignedBox3d> boxes) {
 void Bvh::refit(const std::vector<Eigen::AlignedBox3d>& boxes) {
   if (boxes.size() != ids_.size())
     throw std::invalid_argument("a refit needs one box per primitive of the tree");
-  for (std::size_t k = 0; k < ids_.size(); ++k) boxes_[k] = FloatBox::outward(boxes[static_cast<std::size_t>(ids_[k])]);
+  for (std::size_t k = 0; k < ids_.size(); ++k)
+    boxes_[k] = FloatBox::outward(boxes[static_cast<std::size_t>(ids_[k])]);
   // Children come after their parent in the flat array: one backward sweep.
   for (std::size_t n = nodes_.size(); n-- > 0;) {
     Node& node = nodes_[n];
     if (node.count > 0) {
       node.box = boxes_[static_cast<std::size_t>(node.first)];
-      for (int i = node.first + 1; i < node.first + node.count; ++i) node.box.extend(boxes_[static_cast<std::size_t>(i)]);
+      for (int i = node.first + 1; i < node.first + node.count; ++i)
+        node.box.extend(boxes_[static_cast<std::size_t>(i)]);
     } else {
       node.box = nodes_[n + 1].box;
       node.box.extend(nodes_[static_cast<std::size_t>(node.first)].box);
@@ -134,7 +136,8 @@ void Bvh::build_node(int node, int begin, int end) {
   const int left = node + 1;
   const int right = left + subtree_nodes(middle - begin);
   if (count >= kParallelSubtree) {
-    tbb::parallel_invoke([&] { build_node(left, begin, middle); }, [&] { build_node(right, middle, end); });
+    tbb::parallel_invoke([&] { build_node(left, begin, middle); },
+                         [&] { build_node(right, middle, end); });
   } else {
     build_node(left, begin, middle);
     build_node(right, middle, end);

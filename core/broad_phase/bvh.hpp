@@ -51,7 +51,8 @@ class Bvh {
       if (!node.box.intersects(query)) continue;
       if (node.count > 0) {
         for (int i = node.first; i < node.first + node.count; ++i)
-          if (boxes_[static_cast<std::size_t>(i)].intersects(query)) visit(ids_[static_cast<std::size_t>(i)]);
+          if (boxes_[static_cast<std::size_t>(i)].intersects(query))
+            visit(ids_[static_cast<std::size_t>(i)]);
       } else {
         stack[top++] = node.first;
         stack[top++] = n + 1;
@@ -108,10 +109,11 @@ class Bvh {
   template <typename Push>
   void split_pair(const Bvh& other, NodePair pair, const Push& push) const;
   template <typename T, typename Emit>
-  void descend_pairs(const Bvh& other, NodePair start, const Emit& emit, std::vector<T>& sink) const;
+  void descend_pairs(const Bvh& other, NodePair start, const Emit& emit,
+                     std::vector<T>& sink) const;
 
   std::vector<Node> nodes_;
-  std::vector<int> ids_;                    ///< primitive ids in leaf order
+  std::vector<int> ids_;         ///< primitive ids in leaf order
   std::vector<FloatBox> boxes_;  ///< their boxes, in leaf order
 };
 
@@ -129,7 +131,8 @@ void Bvh::split_pair(const Bvh& other, NodePair pair, const Push& push) const {
     return;
   }
   // Descend the node that is an internal node with the larger box.
-  const bool split_a = nb.count > 0 || (na.count == 0 && na.box.half_perimeter() >= nb.box.half_perimeter());
+  const bool split_a =
+      nb.count > 0 || (na.count == 0 && na.box.half_perimeter() >= nb.box.half_perimeter());
   if (split_a) {
     push(NodePair{a + 1, b});
     push(NodePair{na.first, b});
@@ -140,7 +143,8 @@ void Bvh::split_pair(const Bvh& other, NodePair pair, const Push& push) const {
 }
 
 template <typename T, typename Emit>
-void Bvh::descend_pairs(const Bvh& other, NodePair start, const Emit& emit, std::vector<T>& sink) const {
+void Bvh::descend_pairs(const Bvh& other, NodePair start, const Emit& emit,
+                        std::vector<T>& sink) const {
   const bool self = this == &other;
   NodePair stack[2 * kMaxDepth + 4];
   int top = 0;

@@ -20,21 +20,26 @@ using Box = Eigen::AlignedBox3d;
 
 /// Boxes of elements (rows of vertex ids) over their vertices' boxes, each grown by `grow`.
 template <typename Elements>
-std::vector<Box> element_boxes(const Elements& elements, const std::vector<Box>& vertex_boxes, double grow) {
+std::vector<Box> element_boxes(const Elements& elements, const std::vector<Box>& vertex_boxes,
+                               double grow) {
   std::vector<Box> boxes(static_cast<std::size_t>(elements.rows()));
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, elements.rows(), 2048), [&](const auto& range) {
-    for (Eigen::Index e = range.begin(); e != range.end(); ++e) {
-      Box box = vertex_boxes[static_cast<std::size_t>(elements(e, 0))];
-      for (Eigen::Index k = 1; k < elements.cols(); ++k) box.extend(vertex_boxes[static_cast<std::size_t>(elements(e, k))]);
-      box.min().array() -= grow;
-      box.max().array() += grow;
-      boxes[static_cast<std::size_t>(e)] = box;
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, elements.rows(), 2048),
+                    [&](const auto& range) {
+                      for (Eigen::Index e = range.begin(); e != range.end(); ++e) {
+                        Box box = vertex_boxes[static_cast<std::size_t>(elements(e, 0))];
+                        for (Eigen::Index k = 1; k < elements.cols(); ++k)
+                          box.extend(vertex_boxes[static_cast<std::size_t>(elements(e, k))]);
+                        box.min().array() -= grow;
+                        box.max().array() += grow;
+                        boxes[static_cast<std::size_t>(e)] = box;
+                      }
+                    });
   return boxes;
 }
 
-std::array<int, 3> face(const MatrixX3i& faces, int f) { return {faces(f, 0), faces(f, 1), faces(f, 2)}; }
+std::array<int, 3> face(const MatrixX3i& faces, int f) {
+  return {faces(f, 0), faces(f, 1), faces(f, 2)};
+}
 std::array<int, 2> edge(const MatrixX2i& edges, int e) { return {edges(e, 0), edges(e, 1)}; }
 
 /// Avatar vertices that some contact face uses (a subset of faces may be modelled).
@@ -54,7 +59,8 @@ std::vector<Box> point_boxes(const std::vector<Box>& vertex_boxes, int first, in
                              const std::vector<int>* ids, double grow) {
   std::vector<Box> boxes(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
-    Box box = vertex_boxes[static_cast<std::size_t>(ids ? (*ids)[static_cast<std::size_t>(i)] : first + i)];
+    Box box = vertex_boxes[static_cast<std::size_t>(ids ? (*ids)[static_cast<std::size_t>(i)]
+                                                        : first + i)];
     box.min().array() -= grow;
     box.max().array() += grow;
     boxes[static_cast<std::size_t>(i)] = box;
@@ -68,7 +74,8 @@ std::vector<Box> point_boxes(const std::vector<Box>& vertex_boxes, int first, in
 constexpr double kOnMotionTolerance = 1e-10;
 
 bool same_boxes(const std::vector<Box>& a, const std::vector<Box>& b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Box& x, const Box& y) {
+  return a.size() == b.size() &&
+         std::equal(a.begin(), a.end(), b.begin(), [](const Box& x, const Box& y) {
            return x.min() == y.min() && x.max() == y.max();
          });
 }
@@ -89,11 +96,14 @@ struct CandidateFinder::GarmentTrees {
 
 CandidateFinder::CandidateFinder(ContactMesh mesh)
     : mesh_(std::move(mesh)), avatar_points_(used_avatar_points(mesh_)),
-      avatar_trees_(std::make_unique<AvatarTrees>()), garment_trees_(std::make_unique<GarmentTrees>()) {}
+      avatar_trees_(std::make_unique<AvatarTrees>()),
+      garment_trees_(std::make_unique<GarmentTrees>()) {}
 
 CandidateFinder::~CandidateFinder() = default;
 
-const GarmentRegions* CandidateFinder::regions() const { return self_ ? &self_->regions() : nullptr; }
+const GarmentRegions* CandidateFinder::regions() const {
+  return self_ ? &self_->regions() : nullptr;
+}
 
 const std::vector<char>& CandidateFinder::fold_free() const {
   static const std::vector<char> none;
@@ -103,8 +113,8 @@ const std::vector<char>& CandidateFinder::fold_free() const {
 void CandidateFinder::check_positions(const Eigen::Ref<const MatrixX3d>& V) const {
   if (V.rows() != mesh_.vertex_count())
     throw std::invalid_argument("contact positions have " + std::to_string(V.rows()) +
-                                " rows, the contact mesh has " + std::to_string(mesh_.vertex_count()) +
-                                " vertices");
+                                " rows, the contact mesh has " +
+                                std::to_string(mesh_.vertex_count()) + " vertices");
 }
 
 Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, double radius,
@@ -114,7 +124,8 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
   const int ng = mesh_.garment_vertex_count;
   AvatarTrees& avatar = *avatar_trees_;
   std::vector<Box> avatar_vertex_boxes(vertex_boxes.begin() + ng, vertex_boxes.end());
-  const bool rebuild_avatar = radius != avatar.radius || !same_boxes(avatar_vertex_boxes, avatar.vertex_boxes);
+  const bool rebuild_avatar =
+      radius != avatar.radius || !same_boxes(avatar_vertex_boxes, avatar.vertex_boxes);
   if (rebuild_avatar) {
     avatar.vertex_boxes = std::move(avatar_vertex_boxes);
     avatar.radius = radius;
@@ -138,8 +149,14 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
           avatar.points.build(point_boxes(vertex_boxes, 0, static_cast<int>(avatar_points_.size()),
                                           &avatar_points_, grow));
       },
-      [&] { if (rebuild_avatar) avatar.faces.build(element_boxes(mesh_.avatar_faces, vertex_boxes, grow)); },
-      [&] { if (rebuild_avatar) avatar.edges.build(element_boxes(mesh_.avatar_edges, vertex_boxes, grow)); });
+      [&] {
+        if (rebuild_avatar)
+          avatar.faces.build(element_boxes(mesh_.avatar_faces, vertex_boxes, grow));
+      },
+      [&] {
+        if (rebuild_avatar)
+          avatar.edges.build(element_boxes(mesh_.avatar_edges, vertex_boxes, grow));
+      });
 
   const auto& gf = mesh_.garment_faces;
   const auto& af = mesh_.avatar_faces;
@@ -161,24 +178,30 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
   std::vector<EE> edges_ga, self_ee;
   tbb::parallel_invoke(
       [&] {
-        garment_avatar = garment_points.collect_pairs<PT>(avatar.faces, [&](int v, int f, std::vector<PT>& sink) {
-          if (keep_pt(v, face(af, f))) sink.push_back({v, face(af, f)});
-        });
+        garment_avatar = garment_points.collect_pairs<PT>(avatar.faces,
+                                                          [&](int v, int f, std::vector<PT>& sink) {
+                                                            if (keep_pt(v, face(af, f)))
+                                                              sink.push_back({v, face(af, f)});
+                                                          });
       },
       [&] {
-        avatar_garment = avatar.points.collect_pairs<PT>(garment_faces, [&](int i, int f, std::vector<PT>& sink) {
-          const int v = avatar_points_[static_cast<std::size_t>(i)];
-          if (keep_pt(v, face(gf, f))) sink.push_back({v, face(gf, f)});
-        });
+        avatar_garment = avatar.points.collect_pairs<PT>(
+            garment_faces, [&](int i, int f, std::vector<PT>& sink) {
+              const int v = avatar_points_[static_cast<std::size_t>(i)];
+              if (keep_pt(v, face(gf, f))) sink.push_back({v, face(gf, f)});
+            });
       },
       [&] {
-        edges_ga = garment_edges.collect_pairs<EE>(avatar.edges, [&](int a, int b, std::vector<EE>& sink) {
-          if (keep_ee(edge(ge, a), edge(ae, b))) sink.push_back({edge(ge, a), edge(ae, b)});
-        });
+        edges_ga =
+            garment_edges.collect_pairs<EE>(avatar.edges, [&](int a, int b, std::vector<EE>& sink) {
+              if (keep_ee(edge(ge, a), edge(ae, b))) sink.push_back({edge(ge, a), edge(ae, b)});
+            });
       },
       [&] {
         if (!self_contact) return;
-        if (!self_) self_ = std::make_unique<SelfContactSearch>(mesh_, V0.topRows(mesh_.garment_vertex_count));
+        if (!self_)
+          self_ =
+              std::make_unique<SelfContactSearch>(mesh_, V0.topRows(mesh_.garment_vertex_count));
         self_->find(garment_point_boxes, garment_face_boxes, garment_edge_boxes, V0, V1, threshold,
                     self_pt, self_ee);
       });
@@ -197,12 +220,14 @@ Candidates CandidateFinder::find(const Eigen::Ref<const MatrixX3d>& V, double in
     const Vector3d p = V.row(i).transpose();
     vertex_boxes[static_cast<std::size_t>(i)] = Box(p, p);
   }
-  if (inflation_radius <= swept_radius_ && on_swept_motion(V)) return filter_swept(V, inflation_radius);
+  if (inflation_radius <= swept_radius_ && on_swept_motion(V))
+    return filter_swept(V, inflation_radius);
   return box_pairs(vertex_boxes, inflation_radius, V, V, inflation_radius);
 }
 
 Candidates CandidateFinder::find_swept(const Eigen::Ref<const MatrixX3d>& V0,
-                                       const Eigen::Ref<const MatrixX3d>& V1, double inflation_radius) {
+                                       const Eigen::Ref<const MatrixX3d>& V1,
+                                       double inflation_radius) {
   check_positions(V0);
   check_positions(V1);
   std::vector<Box> vertex_boxes(static_cast<std::size_t>(V0.rows()));
@@ -215,11 +240,12 @@ Candidates CandidateFinder::find_swept(const Eigen::Ref<const MatrixX3d>& V0,
   }
   // A static query on this motion may be off it by rounding (kOnMotionTolerance per
   // vertex), which can shrink a pair's gap by twice that: keep pairs that come that close.
-  swept_ = box_pairs(vertex_boxes, inflation_radius, V0, V1, inflation_radius + 2.0 * kOnMotionTolerance);
+  swept_ = box_pairs(vertex_boxes, inflation_radius, V0, V1,
+                     inflation_radius + 2.0 * kOnMotionTolerance);
   if (self_ && mesh_.garment_faces.rows() > 0) {
     ++swept_queries_;
-    fold_free_fraction_sum_ +=
-        static_cast<double>(self_->fold_free_faces()) / static_cast<double>(mesh_.garment_faces.rows());
+    fold_free_fraction_sum_ += static_cast<double>(self_->fold_free_faces()) /
+                               static_cast<double>(mesh_.garment_faces.rows());
   }
   swept_start_ = V0;
   swept_end_ = V1;
@@ -239,7 +265,8 @@ bool CandidateFinder::on_swept_motion(const Eigen::Ref<const MatrixX3d>& V) cons
   return true;
 }
 
-Candidates CandidateFinder::filter_swept(const Eigen::Ref<const MatrixX3d>& V, double radius) const {
+Candidates CandidateFinder::filter_swept(const Eigen::Ref<const MatrixX3d>& V,
+                                         double radius) const {
   // Every pair that may be within the radius at V is in the swept list (V is on the swept
   // motion): keep those whose separation bound at V does not rule them out.
   const std::size_t npt = swept_.point_triangle.size();
@@ -248,10 +275,12 @@ Candidates CandidateFinder::filter_swept(const Eigen::Ref<const MatrixX3d>& V, d
     for (std::size_t k = range.begin(); k != range.end(); ++k) {
       if (k < npt) {
         const PointTriangleCandidate& c = swept_.point_triangle[k];
-        keep[k] = pair_may_come_within(V, V, {c.point, c.triangle[0], c.triangle[1], c.triangle[2]}, 1, radius);
+        keep[k] = pair_may_come_within(V, V, {c.point, c.triangle[0], c.triangle[1], c.triangle[2]},
+                                       1, radius);
       } else {
         const EdgeEdgeCandidate& c = swept_.edge_edge[k - npt];
-        keep[k] = pair_may_come_within(V, V, {c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]}, 2, radius);
+        keep[k] = pair_may_come_within(V, V, {c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]},
+                                       2, radius);
       }
     }
   });

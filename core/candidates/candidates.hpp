@@ -75,8 +75,8 @@ class CandidateFinder {
   /// As find_candidates. @throw std::invalid_argument when V has the wrong row count.
   Candidates find(const Eigen::Ref<const MatrixX3d>& V, double inflation_radius);
   /// As find_swept_candidates. @throw std::invalid_argument for a wrong row count.
-  Candidates find_swept(const Eigen::Ref<const MatrixX3d>& V0, const Eigen::Ref<const MatrixX3d>& V1,
-                        double inflation_radius);
+  Candidates find_swept(const Eigen::Ref<const MatrixX3d>& V0,
+                        const Eigen::Ref<const MatrixX3d>& V1, double inflation_radius);
 
  private:
   struct AvatarTrees;
@@ -100,7 +100,7 @@ class CandidateFinder {
   std::vector<int> avatar_points_;  ///< avatar vertices that some contact face uses
   std::unique_ptr<AvatarTrees> avatar_trees_;
   std::unique_ptr<GarmentTrees> garment_trees_;
-  Candidates swept_;                ///< the last swept query's pairs
+  Candidates swept_;                   ///< the last swept query's pairs
   MatrixX3d swept_start_, swept_end_;  ///< and its motion
   double swept_radius_ = -1.0;
 };

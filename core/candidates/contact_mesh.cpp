@@ -33,8 +33,10 @@ ContactMesh ContactMesh::build(const TriangleMesh& garment, const TriangleMesh& 
     for (std::size_t i = 0; i < avatar_faces_used.size(); ++i) {
       const int f = avatar_faces_used[i];
       if (f < 0 || f >= avatar.faces.rows())
-        throw InputError("", 0, "avatar face " + std::to_string(f) + " selected for contact does not exist");
-      mesh.avatar_faces.row(static_cast<Eigen::Index>(i)) = avatar.faces.row(f).array() + mesh.garment_vertex_count;
+        throw InputError(
+            "", 0, "avatar face " + std::to_string(f) + " selected for contact does not exist");
+      mesh.avatar_faces.row(static_cast<Eigen::Index>(i)) =
+          avatar.faces.row(f).array() + mesh.garment_vertex_count;
     }
   }
   mesh.avatar_edges = unique_edges(mesh.avatar_faces);

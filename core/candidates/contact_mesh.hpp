@@ -12,11 +12,11 @@ namespace gr {
 struct ContactMesh {
   int garment_vertex_count = 0;
   int avatar_vertex_count = 0;
-  MatrixX3i garment_faces;  ///< #Fg×3
-  MatrixX2i garment_edges;  ///< #Eg×2, each undirected edge once
-  MatrixX3i avatar_faces;   ///< #Fa×3, offset by garment_vertex_count; may be a subset
-  MatrixX2i avatar_edges;   ///< #Ea×2, edges of avatar_faces
-  bool self_contact = true; ///< model garment–garment pairs that share no vertex
+  MatrixX3i garment_faces;   ///< #Fg×3
+  MatrixX2i garment_edges;   ///< #Eg×2, each undirected edge once
+  MatrixX3i avatar_faces;    ///< #Fa×3, offset by garment_vertex_count; may be a subset
+  MatrixX2i avatar_edges;    ///< #Ea×2, edges of avatar_faces
+  bool self_contact = true;  ///< model garment–garment pairs that share no vertex
   /// Leave out self pairs inside a garment region that provably cannot fold onto itself
   /// during the motion at hand (candidates/fold_free_regions.hpp); off: search them all.
   bool cull_fold_free = true;

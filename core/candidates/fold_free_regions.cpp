@@ -13,7 +13,8 @@ namespace gr {
 namespace {
 
 std::uint64_t ordered_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
 }
 std::uint64_t edge_key(int a, int b) { return a < b ? ordered_key(a, b) : ordered_key(b, a); }
 
@@ -50,7 +51,8 @@ void finish_region(GarmentRegions::Region& region, const MatrixX3i& faces) {
 
   std::sort(directed.begin(), directed.end());
   std::sort(undirected.begin(), undirected.end());
-  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) return;  // not oriented
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end())
+    return;  // not oriented
   std::size_t edge_count = 0;
   for (std::size_t i = 0; i < undirected.size();) {
     std::size_t j = i;
@@ -67,7 +69,8 @@ void finish_region(GarmentRegions::Region& region, const MatrixX3i& faces) {
   std::vector<std::pair<int, int>> next;
   for (const std::uint64_t key : directed) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    if (!std::binary_search(directed.begin(), directed.end(), ordered_key(b, a))) next.emplace_back(a, b);
+    if (!std::binary_search(directed.begin(), directed.end(), ordered_key(b, a)))
+      next.emplace_back(a, b);
   }
   if (next.size() < 3) return;
   for (std::size_t i = 1; i < next.size(); ++i)
@@ -99,7 +102,8 @@ std::vector<std::vector<int>> grow_patches(const MatrixX3i& faces, const EdgeSid
   std::vector<Vector3d> normals(static_cast<std::size_t>(face_count));
   std::vector<char> degenerate(static_cast<std::size_t>(face_count), 0);
   for (int f = 0; f < face_count; ++f) {
-    const Vector3d n = (row(V, faces(f, 1)) - row(V, faces(f, 0))).cross(row(V, faces(f, 2)) - row(V, faces(f, 0)));
+    const Vector3d n = (row(V, faces(f, 1)) - row(V, faces(f, 0)))
+                           .cross(row(V, faces(f, 2)) - row(V, faces(f, 0)));
     const double length = n.norm();
     const auto i = static_cast<std::size_t>(f);
     degenerate[i] = !(length > 0.0) || !std::isfinite(length);
@@ -152,7 +156,9 @@ std::vector<std::vector<int>> grow_patches(const MatrixX3i& faces, const EdgeSid
   return patches;
 }
 
-double cross2(const Eigen::Vector2d& p, const Eigen::Vector2d& q) { return p.x() * q.y() - p.y() * q.x(); }
+double cross2(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+  return p.x() * q.y() - p.y() * q.x();
+}
 
 /// A quadratic in τ given by its Bernstein coefficients stays above `margin` on [0, 1].
 bool stays_above(double b0, double b1, double b2, double margin) {
@@ -167,7 +173,8 @@ GarmentRegions build_garment_regions(const MatrixX3i& faces, const MatrixX2i& ed
   EdgeSides sides;
   sides.reserve(static_cast<std::size_t>(3 * faces.rows()));
   for (int f = 0; f < static_cast<int>(faces.rows()); ++f)
-    for (int k = 0; k < 3; ++k) sides[edge_key(faces(f, k), faces(f, (k + 1) % 3))].push_back({f, faces(f, k)});
+    for (int k = 0; k < 3; ++k)
+      sides[edge_key(faces(f, k), faces(f, (k + 1) % 3))].push_back({f, faces(f, k)});
 
   GarmentRegions out;
   const std::vector<std::vector<int>> patches =
@@ -188,7 +195,8 @@ GarmentRegions build_garment_regions(const MatrixX3i& faces, const MatrixX2i& ed
   for (const auto& entry : sides) {
     const std::vector<FaceSide>& around = entry.second;
     if (around.size() == 2 && around[0].from != around[1].from)
-      links.emplace_back(std::min(around[0].face, around[1].face), std::max(around[0].face, around[1].face));
+      links.emplace_back(std::min(around[0].face, around[1].face),
+                         std::max(around[0].face, around[1].face));
   }
   std::sort(links.begin(), links.end());
   for (const auto& [fa, fb] : links) {
@@ -208,14 +216,17 @@ GarmentRegions build_garment_regions(const MatrixX3i& faces, const MatrixX2i& ed
   std::vector<int> face_region(static_cast<std::size_t>(faces.rows()));
   for (;;) {
     for (int r : level)
-      for (int f : out.regions[static_cast<std::size_t>(r)].faces) face_region[static_cast<std::size_t>(f)] = r;
+      for (int f : out.regions[static_cast<std::size_t>(r)].faces)
+        face_region[static_cast<std::size_t>(f)] = r;
     std::vector<std::pair<int, int>> seams;  // region pairs, once per shared edge
     for (const auto& [fa, fb] : links) {
-      const int a = face_region[static_cast<std::size_t>(fa)], b = face_region[static_cast<std::size_t>(fb)];
+      const int a = face_region[static_cast<std::size_t>(fa)],
+                b = face_region[static_cast<std::size_t>(fb)];
       if (a != b) seams.emplace_back(std::min(a, b), std::max(a, b));
     }
     std::sort(seams.begin(), seams.end());
-    std::unordered_map<int, std::vector<std::pair<int, int>>> neighbours;  // region → (shared edges, other)
+    std::unordered_map<int, std::vector<std::pair<int, int>>>
+        neighbours;  // region → (shared edges, other)
     for (std::size_t i = 0; i < seams.size();) {
       std::size_t j = i;
       while (j < seams.size() && seams[j] == seams[i]) ++j;
@@ -229,16 +240,20 @@ GarmentRegions build_garment_regions(const MatrixX3i& faces, const MatrixX2i& ed
     bool any = false;
     // Smallest regions first, each with its smallest free neighbour (then the one it shares
     // the most edges with): sizes stay balanced, so the hierarchy stays shallow.
-    const auto size_of = [&](int r) { return out.regions[static_cast<std::size_t>(r)].faces.size(); };
+    const auto size_of = [&](int r) {
+      return out.regions[static_cast<std::size_t>(r)].faces.size();
+    };
     std::vector<int> order = level;
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return size_of(a) < size_of(b); });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return size_of(a) < size_of(b); });
     for (int r : order) {
       if (joined.count(r)) continue;
       int best = -1, best_count = 0;
       for (const auto& [count, other] : neighbours[r]) {
         if (joined.count(other)) continue;
         const bool better = best < 0 || size_of(other) < size_of(best) ||
-                            (size_of(other) == size_of(best) && (count > best_count || (count == best_count && other < best)));
+                            (size_of(other) == size_of(best) &&
+                             (count > best_count || (count == best_count && other < best)));
         if (better) {
           best = other;
           best_count = count;
@@ -267,12 +282,14 @@ GarmentRegions build_garment_regions(const MatrixX3i& faces, const MatrixX2i& ed
   out.vertex_leaf.assign(static_cast<std::size_t>(V.rows()), -1);
   for (std::size_t p = 0; p < out.leaves.size(); ++p)
     for (int v : out.regions[static_cast<std::size_t>(out.leaves[p])].vertices)
-      if (out.vertex_leaf[static_cast<std::size_t>(v)] < 0) out.vertex_leaf[static_cast<std::size_t>(v)] = static_cast<int>(p);
+      if (out.vertex_leaf[static_cast<std::size_t>(v)] < 0)
+        out.vertex_leaf[static_cast<std::size_t>(v)] = static_cast<int>(p);
   out.edge_leaf.assign(static_cast<std::size_t>(edges.rows()), -1);
   for (Eigen::Index e = 0; e < edges.rows(); ++e) {
     const auto it = sides.find(edge_key(edges(e, 0), edges(e, 1)));
     if (it != sides.end() && !it->second.empty())
-      out.edge_leaf[static_cast<std::size_t>(e)] = out.face_leaf[static_cast<std::size_t>(it->second.front().face)];
+      out.edge_leaf[static_cast<std::size_t>(e)] =
+          out.face_leaf[static_cast<std::size_t>(it->second.front().face)];
   }
   return out;
 }
@@ -314,9 +331,10 @@ bool stays_fold_free(const GarmentRegions::Region& region, const MatrixX3i& face
     // Twice the projected area over the longest edge bounds the projected heights: keep
     // them above the clearance (edge lengths along the motion are at most their largest
     // end value).
-    const double longest = std::max({e1.norm(), e2.norm(), (e2 - e1).norm(), f1.norm(), f2.norm(), (f2 - f1).norm()});
-    if (!stays_above(a.dot(e1.cross(e2)), 0.5 * a.dot(e1.cross(f2) + f1.cross(e2)), a.dot(f1.cross(f2)),
-                     clearance * longest + kRelativeMargin * scale + floor))
+    const double longest =
+        std::max({e1.norm(), e2.norm(), (e2 - e1).norm(), f1.norm(), f2.norm(), (f2 - f1).norm()});
+    if (!stays_above(a.dot(e1.cross(e2)), 0.5 * a.dot(e1.cross(f2) + f1.cross(e2)),
+                     a.dot(f1.cross(f2)), clearance * longest + kRelativeMargin * scale + floor))
       return false;
   }
 
@@ -335,8 +353,10 @@ bool stays_fold_free(const GarmentRegions::Region& region, const MatrixX3i& face
     const std::size_t q = (k + 1) % n, r = (k + 2) % n;
     const Eigen::Vector2d d0 = start[k] - start[q], d1 = end[k] - end[q];
     const Eigen::Vector2d g0 = start[r] - start[q], g1 = end[r] - end[q];
-    const double margin = kRelativeMargin * (d0.norm() + d1.norm()) * (g0.norm() + g1.norm()) + floor;
-    const double c0b = cross2(d0, g0), c1b = 0.5 * (cross2(d0, g1) + cross2(d1, g0)), c2b = cross2(d1, g1);
+    const double margin =
+        kRelativeMargin * (d0.norm() + d1.norm()) * (g0.norm() + g1.norm()) + floor;
+    const double c0b = cross2(d0, g0), c1b = 0.5 * (cross2(d0, g1) + cross2(d1, g0)),
+                 c2b = cross2(d1, g1);
     const double s0 = d0.dot(g0), s1 = 0.5 * (d0.dot(g1) + d1.dot(g0)), s2 = d1.dot(g1);
     if (!stays_above(c0b, c1b, c2b, margin) && !stays_above(-c0b, -c1b, -c2b, margin) &&
         !stays_above(-s0, -s1, -s2, margin))
@@ -370,7 +390,8 @@ bool stays_fold_free(const GarmentRegions::Region& region, const MatrixX3i& face
     for (const Hull* H : {&A, &B})
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
-          const Eigen::Vector2d d = H->points[static_cast<std::size_t>(j)] - H->points[static_cast<std::size_t>(i)];
+          const Eigen::Vector2d d =
+              H->points[static_cast<std::size_t>(j)] - H->points[static_cast<std::size_t>(i)];
           const double length = d.norm();
           if (!(length > 0.0)) continue;
           const Eigen::Vector2d along = d / length;
@@ -382,16 +403,19 @@ bool stays_fold_free(const GarmentRegions::Region& region, const MatrixX3i& face
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-    return hulls[i].box.min().x() < hulls[j].box.min().x() || (hulls[i].box.min().x() == hulls[j].box.min().x() && i < j);
+    return hulls[i].box.min().x() < hulls[j].box.min().x() ||
+           (hulls[i].box.min().x() == hulls[j].box.min().x() && i < j);
   });
   for (std::size_t x = 0; x < n; ++x) {
     const Hull& A = hulls[order[x]];
-    for (std::size_t y = x + 1; y < n && hulls[order[y]].box.min().x() <= A.box.max().x() + gap; ++y) {
+    for (std::size_t y = x + 1; y < n && hulls[order[y]].box.min().x() <= A.box.max().x() + gap;
+         ++y) {
       const std::size_t i = order[x], j = order[y];
       const std::size_t apart = i > j ? i - j : j - i;
       if (apart == 1 || apart == n - 1) continue;  // consecutive: handled above
       const Hull& B = hulls[j];
-      if (A.box.min().y() > B.box.max().y() + gap || B.box.min().y() > A.box.max().y() + gap) continue;
+      if (A.box.min().y() > B.box.max().y() + gap || B.box.min().y() > A.box.max().y() + gap)
+        continue;
       if (!separated(A, B)) return false;
     }
   }

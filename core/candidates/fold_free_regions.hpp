@@ -27,8 +27,8 @@ struct GarmentRegions {
   };
   /// Children come before their parent.
   std::vector<Region> regions;
-  std::vector<int> roots;    ///< regions no other joins (one per piece, or more)
-  std::vector<int> leaves;   ///< region id of each leaf
+  std::vector<int> roots;        ///< regions no other joins (one per piece, or more)
+  std::vector<int> leaves;       ///< region id of each leaf
   std::vector<int> face_leaf;    ///< per garment face
   std::vector<int> vertex_leaf;  ///< per garment vertex, a leaf that holds it; -1 if no face does
   std::vector<int> edge_leaf;    ///< per row of the edge list given, a leaf that holds it

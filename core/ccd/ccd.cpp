@@ -37,7 +37,8 @@ double pair_step(const Candidates& candidates, std::size_t k, const Eigen::Ref<c
   const double gap = pair_separation_lower_bound(x0, x1, edge_edge ? 2 : 1, needed);
   if (gap > options.min_separation && gap > 0.0 && gap >= options.min_separation_ratio * d0_upper)
     return t_max;
-  return edge_edge ? edge_edge_ccd(x0, x1, options, t_max) : point_triangle_ccd(x0, x1, options, t_max);
+  return edge_edge ? edge_edge_ccd(x0, x1, options, t_max)
+                   : point_triangle_ccd(x0, x1, options, t_max);
 }
 
 }  // namespace

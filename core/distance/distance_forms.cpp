@@ -26,7 +26,8 @@ double cross_sq_form(const Vector3d& u, const Vector3d& v, Vector6d* gradient, M
   }
   if (hessian) {
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    const Eigen::Matrix3d uv_block = 4.0 * u * v.transpose() - 2.0 * v * u.transpose() - 2.0 * uv * I;
+    const Eigen::Matrix3d uv_block =
+        4.0 * u * v.transpose() - 2.0 * v * u.transpose() - 2.0 * uv * I;
     hessian->block<3, 3>(0, 0) = 2.0 * vv * I - 2.0 * v * v.transpose();
     hessian->block<3, 3>(3, 3) = 2.0 * uu * I - 2.0 * u * u.transpose();
     hessian->block<3, 3>(0, 3) = uv_block;
@@ -35,12 +36,14 @@ double cross_sq_form(const Vector3d& u, const Vector3d& v, Vector6d* gradient, M
   return u.cross(v).squaredNorm();
 }
 
-double point_line_form(const Vector3d& a, const Vector3d& u, Vector6d* gradient, Matrix6d* hessian) {
+double point_line_form(const Vector3d& a, const Vector3d& u, Vector6d* gradient,
+                       Matrix6d* hessian) {
   // f = c / q with c = |a × u|² and q = |u|² (q depends on u only).
   const double q = u.squaredNorm();
   Vector6d gc;
   Matrix6d Hc;
-  const double c = cross_sq_form(a, u, gradient || hessian ? &gc : nullptr, hessian ? &Hc : nullptr);
+  const double c =
+      cross_sq_form(a, u, gradient || hessian ? &gc : nullptr, hessian ? &Hc : nullptr);
   const double f = c / q;
   if (!gradient && !hessian) return f;
   Vector6d gq = Vector6d::Zero();
@@ -55,14 +58,15 @@ double point_line_form(const Vector3d& a, const Vector3d& u, Vector6d* gradient,
   return f;
 }
 
-double point_plane_form(const Vector3d& a, const Vector3d& u, const Vector3d& v,
-                        Vector9d* gradient, Matrix9d* hessian) {
+double point_plane_form(const Vector3d& a, const Vector3d& u, const Vector3d& v, Vector9d* gradient,
+                        Matrix9d* hessian) {
   // f = t² / c with the triple product t = a · (u × v) and c = |u × v|².
   const Vector3d n = u.cross(v);
   const double t = a.dot(n);
   Vector6d gc6;
   Matrix6d Hc6;
-  const double c = cross_sq_form(u, v, gradient || hessian ? &gc6 : nullptr, hessian ? &Hc6 : nullptr);
+  const double c =
+      cross_sq_form(u, v, gradient || hessian ? &gc6 : nullptr, hessian ? &Hc6 : nullptr);
   const double f = t * t / c;
   if (!gradient && !hessian) return f;
   Vector9d gt;
@@ -86,8 +90,8 @@ double point_plane_form(const Vector3d& a, const Vector3d& u, const Vector3d& v,
     Hc.block<6, 6>(3, 3) = Hc6;
     // Differentiating c g = 2 t gt - f gc once more:
     // c H = 2 gt gt^T + 2 t Ht - g gc^T - gc g^T - f Hc.
-    *hessian = (2.0 * gt * gt.transpose() + 2.0 * t * Ht - g * gc.transpose() -
-                gc * g.transpose() - f * Hc) /
+    *hessian = (2.0 * gt * gt.transpose() + 2.0 * t * Ht - g * gc.transpose() - gc * g.transpose() -
+                f * Hc) /
                c;
   }
   return f;

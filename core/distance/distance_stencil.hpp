@@ -29,7 +29,8 @@ double stencil_distance_sq(const DistanceStencil& stencil, const std::array<Vect
     case DistanceForm::PointPoint: {
       Vector3d g;
       Eigen::Matrix3d H;
-      const double value = point_point_form(diff(0), gradient ? &g : nullptr, hessian ? &H : nullptr);
+      const double value =
+          point_point_form(diff(0), gradient ? &g : nullptr, hessian ? &H : nullptr);
       const std::array<VertexDifference, 1> used{d[0]};
       if (gradient) *gradient = pull_back_gradient<N, 1>(g, used);
       if (hessian) *hessian = pull_back_hessian<N, 1>(H, used);

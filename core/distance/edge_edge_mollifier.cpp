@@ -31,8 +31,8 @@ double edge_edge_mollifier(const Vector3d& ea0, const Vector3d& ea1, const Vecto
   const bool derivatives = gradient || hessian;
   Vector6d gc;
   Matrix6d Hc;
-  const double c = cross_sq_form(ea1 - ea0, eb1 - eb0, derivatives ? &gc : nullptr,
-                                 hessian ? &Hc : nullptr);
+  const double c =
+      cross_sq_form(ea1 - ea0, eb1 - eb0, derivatives ? &gc : nullptr, hessian ? &Hc : nullptr);
   if (!derivatives) return mollifier(c, eps);
   // The cross product's arguments are the differences ea1 - ea0 and eb1 - eb0.
   const std::array<VertexDifference, 2> diffs{VertexDifference{1, 0}, VertexDifference{3, 2}};

@@ -21,13 +21,13 @@ double point_edge_distance_sq(const Vector3d& p, const Vector3d& e0, const Vecto
   return stencil_distance_sq<3>(point_edge_stencil(type), {p, e0, e1});
 }
 
-Vector9d point_edge_distance_sq_gradient(const Vector3d& p, const Vector3d& e0,
-                                         const Vector3d& e1, PointEdgeDistanceType type) {
+Vector9d point_edge_distance_sq_gradient(const Vector3d& p, const Vector3d& e0, const Vector3d& e1,
+                                         PointEdgeDistanceType type) {
   return stencil_distance_sq_gradient<3>(point_edge_stencil(type), {p, e0, e1});
 }
 
-Matrix9d point_edge_distance_sq_hessian(const Vector3d& p, const Vector3d& e0,
-                                        const Vector3d& e1, PointEdgeDistanceType type) {
+Matrix9d point_edge_distance_sq_hessian(const Vector3d& p, const Vector3d& e0, const Vector3d& e1,
+                                        PointEdgeDistanceType type) {
   return stencil_distance_sq_hessian<3>(point_edge_stencil(type), {p, e0, e1});
 }
 

@@ -17,9 +17,9 @@ DistanceStencil point_edge_stencil(PointEdgeDistanceType type);
 double point_edge_distance_sq(const Vector3d& p, const Vector3d& e0, const Vector3d& e1);
 double point_edge_distance_sq(const Vector3d& p, const Vector3d& e0, const Vector3d& e1,
                               PointEdgeDistanceType type);
-Vector9d point_edge_distance_sq_gradient(const Vector3d& p, const Vector3d& e0,
-                                         const Vector3d& e1, PointEdgeDistanceType type);
-Matrix9d point_edge_distance_sq_hessian(const Vector3d& p, const Vector3d& e0,
-                                        const Vector3d& e1, PointEdgeDistanceType type);
+Vector9d point_edge_distance_sq_gradient(const Vector3d& p, const Vector3d& e0, const Vector3d& e1,
+                                         PointEdgeDistanceType type);
+Matrix9d point_edge_distance_sq_hessian(const Vector3d& p, const Vector3d& e0, const Vector3d& e1,
+                                        PointEdgeDistanceType type);
 
 }  // namespace gr

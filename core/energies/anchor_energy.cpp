@@ -21,9 +21,8 @@ AnchorEnergy::AnchorEnergy(const Eigen::Ref<const MatrixX3d>& rest, std::vector<
 }
 
 double AnchorEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
-  return assembly_.value([&](int e) {
-    return 0.5 * (V.row(vertices_[e]) - rest_.row(e)).squaredNorm();
-  });
+  return assembly_.value(
+      [&](int e) { return 0.5 * (V.row(vertices_[e]) - rest_.row(e)).squaredNorm(); });
 }
 
 void AnchorEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
@@ -36,8 +35,8 @@ void AnchorEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
       gradient);
 }
 
-const Eigen::SparseMatrix<double>& AnchorEnergy::hessian(const Eigen::Ref<const MatrixX3d>&,
-                                                         double, bool) const {
+const Eigen::SparseMatrix<double>& AnchorEnergy::hessian(const Eigen::Ref<const MatrixX3d>&, double,
+                                                         bool) const {
   return assembly_.hessian([](int, LocalMatrix& h) { h.setIdentity(); }, false);
 }
 

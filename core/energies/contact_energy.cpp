@@ -5,7 +5,8 @@
 namespace gr {
 namespace {
 
-MatrixX3d stack_rows(const Eigen::Ref<const MatrixX3d>& top, const Eigen::Ref<const MatrixX3d>& bottom) {
+MatrixX3d stack_rows(const Eigen::Ref<const MatrixX3d>& top,
+                     const Eigen::Ref<const MatrixX3d>& bottom) {
   MatrixX3d V(top.rows() + bottom.rows(), 3);
   V.topRows(top.rows()) = top;
   V.bottomRows(bottom.rows()) = bottom;
@@ -18,11 +19,8 @@ ContactEnergy::ContactEnergy(ContactMesh mesh, const Eigen::Ref<const MatrixX3d>
                              const Eigen::Ref<const MatrixX3d>& avatar_start,
                              const Eigen::Ref<const MatrixX3d>& avatar_end, double dhat,
                              const DofLayout& layout)
-    : finder_(std::move(mesh)),
-      barrier_(dhat, stack_rows(garment_rest, avatar_end)),
-      layout_(layout),
-      avatar_start_(avatar_start),
-      displacement_(avatar_end - avatar_start) {
+    : finder_(std::move(mesh)), barrier_(dhat, stack_rows(garment_rest, avatar_end)),
+      layout_(layout), avatar_start_(avatar_start), displacement_(avatar_end - avatar_start) {
   max_displacement_ = displacement_.rows() > 0 ? displacement_.rowwise().norm().maxCoeff() : 0.0;
   const int garment_coordinates = 3 * finder_.mesh().garment_vertex_count;
   std::vector<Eigen::Triplet<double>> entries;
@@ -33,7 +31,8 @@ ContactEnergy::ContactEnergy(ContactMesh mesh, const Eigen::Ref<const MatrixX3d>
   if (layout_.t_free)
     for (int a = 0; a < finder_.mesh().avatar_vertex_count; ++a)
       for (int axis = 0; axis < 3; ++axis)
-        entries.emplace_back(garment_coordinates + 3 * a + axis, layout_.t_index(), displacement_(a, axis));
+        entries.emplace_back(garment_coordinates + 3 * a + axis, layout_.t_index(),
+                             displacement_(a, axis));
   jacobian_.resize(3 * finder_.mesh().vertex_count(), layout_.dof_count());
   jacobian_.setFromTriplets(entries.begin(), entries.end());
   jacobian_transpose_ = jacobian_.transpose();

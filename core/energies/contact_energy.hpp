@@ -27,7 +27,8 @@ class ContactEnergy : public EnergyTerm {
   /// @param dhat barrier support, normalized scene units.
   ContactEnergy(ContactMesh mesh, const Eigen::Ref<const MatrixX3d>& garment_rest,
                 const Eigen::Ref<const MatrixX3d>& avatar_start,
-                const Eigen::Ref<const MatrixX3d>& avatar_end, double dhat, const DofLayout& layout);
+                const Eigen::Ref<const MatrixX3d>& avatar_end, double dhat,
+                const DofLayout& layout);
 
   const ContactMesh& mesh() const { return finder_.mesh(); }
   const Candidates& candidates() const { return candidates_; }

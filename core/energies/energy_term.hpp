@@ -24,8 +24,8 @@ class EnergyTerm {
   /// Hessian over x (both triangles stored); with `project_psd`, each element's block is
   /// projected to positive semi-definite, so the sum is too. The reference stays valid
   /// until the next call.
-  virtual const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                     double t, bool project_psd) const = 0;
+  virtual const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
+                                                     bool project_psd) const = 0;
   /// Whether the Hessian's sparsity pattern is the same at every point (contact's follows
   /// the pairs in reach, so it is not).
   virtual bool fixed_pattern() const { return true; }

@@ -22,9 +22,7 @@ TriangleQuadrature TriangleQuadrature::with_points(int count) {
       rule.barycentric.emplace_back(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0);
       rule.weights.push_back(1.0);
       break;
-    case 3:
-      add_orbit(2.0 / 3.0, 1.0 / 6.0, 1.0 / 3.0);
-      break;
+    case 3: add_orbit(2.0 / 3.0, 1.0 / 6.0, 1.0 / 3.0); break;
     case 6:  // Strang and Fix / Dunavant degree-4 rule.
       add_orbit(0.108103018168070, 0.445948490915965, 0.223381589678011);
       add_orbit(0.816847572980459, 0.091576213509771, 0.109951743655322);
@@ -74,14 +72,16 @@ FitEnergy::FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit,
 Vector3d FitEnergy::point(int face, std::size_t q, const Eigen::Ref<const MatrixX3d>& V) const {
   const auto& f = faces_[static_cast<std::size_t>(face)];
   const Vector3d& b = quadrature_.barycentric[q];
-  return b[0] * V.row(f[0]).transpose() + b[1] * V.row(f[1]).transpose() + b[2] * V.row(f[2]).transpose();
+  return b[0] * V.row(f[0]).transpose() + b[1] * V.row(f[1]).transpose() +
+         b[2] * V.row(f[2]).transpose();
 }
 
 bool FitEnergy::has_samples_at(const Eigen::Ref<const MatrixX3d>& V) const {
   return sampled_positions_.rows() == V.rows() && sampled_positions_ == V;
 }
 
-const std::vector<FitEnergy::Sample>& FitEnergy::samples_at(const Eigen::Ref<const MatrixX3d>& V) const {
+const std::vector<FitEnergy::Sample>& FitEnergy::samples_at(
+    const Eigen::Ref<const MatrixX3d>& V) const {
   if (has_samples_at(V)) return samples_;
   const std::size_t per_face = quadrature_.weights.size();
   samples_.resize(faces_.size() * per_face);
@@ -114,7 +114,8 @@ double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, const 
     if (g)
       for (int v = 0; v < 3; ++v) g->segment<3>(3 * v) += 2.0 * w * phi * b[v] * grad_phi;
     if (h) {
-      Eigen::Matrix3d point_hessian = 2.0 * w * (grad_phi * grad_phi.transpose() + phi * sample.hessian);
+      Eigen::Matrix3d point_hessian =
+          2.0 * w * (grad_phi * grad_phi.transpose() + phi * sample.hessian);
       if (project_psd) point_hessian = project_to_psd(point_hessian);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) h->block<3, 3>(3 * i, 3 * j) += b[i] * b[j] * point_hessian;
@@ -144,8 +145,8 @@ void FitEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
       gradient);
 }
 
-const Eigen::SparseMatrix<double>& FitEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                      double, bool project_psd) const {
+const Eigen::SparseMatrix<double>& FitEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V, double,
+                                                      bool project_psd) const {
   const Sample* samples = samples_at(V).data();
   const std::size_t per_face = quadrature_.weights.size();
   // The per-point projection already makes each block PSD; the assembly need not redo it.

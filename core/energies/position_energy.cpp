@@ -22,8 +22,8 @@ double PositionEnergy::bone_parameter(const MovingBone& bone, const LocalVector&
                                       LocalVector* gradient, LocalMatrix* hessian) {
   const double t = q[3];
   const Vector3d x = q.head<3>();
-  const Vector3d a_rate = bone.target_a - bone.source_a;             // da/dt
-  const Vector3d d_rate = bone.target_b - bone.source_b - a_rate;    // d(b - a)/dt
+  const Vector3d a_rate = bone.target_a - bone.source_a;           // da/dt
+  const Vector3d d_rate = bone.target_b - bone.source_b - a_rate;  // d(b - a)/dt
   const Vector3d d = bone.b(t) - bone.a(t);
   const Vector3d r = x - bone.a(t);
   // s = N / D with N = r·d, D = d·d; both are polynomials in t, N linear in x.
@@ -48,7 +48,8 @@ double PositionEnergy::bone_parameter(const MovingBone& bone, const LocalVector&
 }
 
 double PositionEnergy::element_value(const Element& element, const LocalVector& q) {
-  const double residual = bone_parameter(element.bone, q, nullptr, nullptr) - element.rest_parameter;
+  const double residual =
+      bone_parameter(element.bone, q, nullptr, nullptr) - element.rest_parameter;
   return 0.5 * residual * residual;
 }
 
@@ -67,7 +68,8 @@ void PositionEnergy::element_hessian(const Element& element, const LocalVector& 
   h = ds * ds.transpose() + residual * dds;
 }
 
-PositionEnergy::LocalVector PositionEnergy::gather(int element, const Eigen::Ref<const MatrixX3d>& V,
+PositionEnergy::LocalVector PositionEnergy::gather(int element,
+                                                   const Eigen::Ref<const MatrixX3d>& V,
                                                    double t) const {
   LocalVector q;
   q << V.row(elements_[static_cast<std::size_t>(element)].vertex).transpose(), t;
@@ -88,7 +90,8 @@ void PositionEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
 const Eigen::SparseMatrix<double>& PositionEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
                                                            double t, bool project_psd) const {
   return assembly_.hessian(
-      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V, t), h); }, project_psd);
+      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V, t), h); },
+      project_psd);
 }
 
 }  // namespace gr

@@ -4,9 +4,9 @@
 #include <array>
 #include <vector>
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <tbb/parallel_for.h>
 
 #include "core/common/psd_projection.hpp"
 

@@ -53,8 +53,8 @@ double StretchEnergy::element_gradient(const Element& element, const LocalVector
   return element.weight * strain * strain;
 }
 
-void StretchEnergy::element_hessian(const Element& element, const LocalVector& q,
-                                    bool project_psd, LocalMatrix& h) {
+void StretchEnergy::element_hessian(const Element& element, const LocalVector& q, bool project_psd,
+                                    LocalMatrix& h) {
   h.setZero();
   const Vector3d d = q.head<3>() - q.tail<3>();
   const double l = d.norm();

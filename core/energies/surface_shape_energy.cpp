@@ -62,8 +62,8 @@ Vector3d reconstruction_difference(const SurfaceShapeEnergy::Element& el, const 
   const Vector3d e = q.segment<3>(3) - x0, u1 = q.segment<3>(6) - x0, u2 = q.segment<3>(9) - x0;
   const Vector3d& c1 = el.coefficients_first;
   const Vector3d& c2 = el.coefficients_second;
-  const Vector3d r = (c1[0] - c2[0]) * e + c1[1] * u1 - c2[1] * u2 + c1[2] * e.cross(u1) -
-                     c2[2] * e.cross(u2);
+  const Vector3d r =
+      (c1[0] - c2[0]) * e + c1[1] * u1 - c2[1] * u2 + c1[2] * e.cross(u1) - c2[2] * e.cross(u2);
   if (jacobian) {
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     // d(e × u) = -[u]× de + [e]× du.
@@ -174,8 +174,7 @@ void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVect
     // and lies above the exact Hessian by the rank-two negative part.
     const double rho = r.norm();
     const double gamma = std::hypot(c1, c2);
-    const Eigen::Matrix3d P =
-        rho * (Eigen::Matrix3d::Identity() - r * r.transpose() / (rho * rho));
+    const Eigen::Matrix3d P = rho * (Eigen::Matrix3d::Identity() - r * r.transpose() / (rho * rho));
     reduced += 0.5 * second;
     reduced.block<3, 3>(0, 0) += 0.5 * gamma * P;
     const double c[2] = {c1, -c2};

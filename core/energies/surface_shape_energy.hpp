@@ -30,7 +30,7 @@ class SurfaceShapeEnergy : public EnergyTerm {
 
   /// One interior edge, its two opposite vertices and rest data.
   struct Element {
-    std::array<int, 4> vertices;  ///< x0, x1 (the edge), x2, x3 (opposite vertices)
+    std::array<int, 4> vertices;          ///< x0, x1 (the edge), x2, x3 (opposite vertices)
     Eigen::Vector3d coefficients_first;   ///< w in the first triangle's rest frame
     Eigen::Vector3d coefficients_second;  ///< w in the second triangle's rest frame
     double weight;                        ///< (rest area 1 + rest area 2) / 3

@@ -9,8 +9,8 @@
 namespace gr {
 
 struct FitResult {
-  NewtonResult solve;   ///< status, iterations, energy; check solve.converged()
-  MatrixX3d garment;    ///< #Vg×3, the last accepted point whatever the status
+  NewtonResult solve;  ///< status, iterations, energy; check solve.converged()
+  MatrixX3d garment;   ///< #Vg×3, the last accepted point whatever the status
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free_fraction = 0.0;
 
@@ -35,6 +35,7 @@ struct FitResult {
 /// @throw std::invalid_argument when scene.distance_field is null or the sample count is
 ///        not 1, 3 or 6; InputError as GarmentProblem's constructor.
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
-                      const RetargetParameters& parameters, const NewtonCallback& on_newton_step = {});
+                      const RetargetParameters& parameters,
+                      const NewtonCallback& on_newton_step = {});
 
 }  // namespace gr

@@ -72,9 +72,10 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     if (round.snapped) {
       result.t_before_snap = t;
       if (layout.t_free) x[layout.t_index()] = 1.0;
-      return finish(InflationStatus::kSnapped,
-                    fmt::format("snapped to t = 1 from t = {:.9g} after {} rounds ({} Newton steps)",
-                                t, result.rounds, result.newton_iterations));
+      return finish(
+          InflationStatus::kSnapped,
+          fmt::format("snapped to t = 1 from t = {:.9g} after {} rounds ({} Newton steps)", t,
+                      result.rounds, result.newton_iterations));
     }
   }
   return finish(InflationStatus::kRoundLimit,

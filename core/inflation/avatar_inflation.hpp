@@ -8,34 +8,34 @@
 namespace gr {
 
 enum class InflationStatus {
-  kSnapped,          ///< t reached 1 exactly with a collision-free snap
-  kRoundLimit,       ///< max_al_rounds Newton solves without a valid snap
-  kSolverFailure,    ///< a Newton solve met a non-finite energy
+  kSnapped,        ///< t reached 1 exactly with a collision-free snap
+  kRoundLimit,     ///< max_al_rounds Newton solves without a valid snap
+  kSolverFailure,  ///< a Newton solve met a non-finite energy
 };
 
 const char* to_string(InflationStatus status);
 
 /// Reported after each augmented Lagrangian round (one Newton solve).
 struct InflationRound {
-  int round;                 ///< 1-based
-  double t;                  ///< after the solve (before any reset)
-  double eta;                ///< 1 - sqrt(|1 - t|)
-  double lambda1, lambda2;   ///< after this round's update
-  bool reset;                ///< eta < 0: garment and t went back to the start
-  bool snapped;              ///< the snap to t = 1 is collision free
+  int round;                ///< 1-based
+  double t;                 ///< after the solve (before any reset)
+  double eta;               ///< 1 - sqrt(|1 - t|)
+  double lambda1, lambda2;  ///< after this round's update
+  bool reset;               ///< eta < 0: garment and t went back to the start
+  bool snapped;             ///< the snap to t = 1 is collision free
   NewtonResult solve;
-  MatrixX3d garment;         ///< #Vg×3 after the solve (before any reset)
+  MatrixX3d garment;  ///< #Vg×3 after the solve (before any reset)
 };
 
 using InflationCallback = std::function<void(const InflationRound&)>;
 
 struct InflationResult {
   InflationStatus status = InflationStatus::kRoundLimit;
-  MatrixX3d garment;         ///< #Vg×3; with kSnapped, free of the avatar A at t = 1
-  double t = 0.0;            ///< 1 exactly when snapped; else the last t
+  MatrixX3d garment;  ///< #Vg×3; with kSnapped, free of the avatar A at t = 1
+  double t = 0.0;     ///< 1 exactly when snapped; else the last t
   double t_before_snap = 0.0;
   int rounds = 0;
-  int newton_iterations = 0; ///< summed over rounds
+  int newton_iterations = 0;  ///< summed over rounds
   int resets = 0;
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free_fraction = 0.0;

@@ -37,9 +37,7 @@ ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters
 
 GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters,
                                Stage stage)
-    : stage_(stage),
-      parameters_(parameters),
-      layout_(layout_for(checked(scene, stage), stage)) {
+    : stage_(stage), parameters_(parameters), layout_(layout_for(checked(scene, stage), stage)) {
   add_term<SurfaceShapeEnergy>(parameters.w_surf, scene.garment, layout_);
   contact_ = &add_term<ContactEnergy>(parameters.w_contact, contact_mesh_for(scene, parameters),
                                       scene.garment.vertices, scene.shrunk_avatar,
@@ -48,10 +46,11 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
     const SkeletonMotion& s = *scene.skeletons;
     loop_bones_ = assign_loop_bones(scene.garment.vertices, boundary_loops(scene.garment.faces),
                                     s.source_joints, s.target_joints, s.bones, s.skirt);
-    position_ = &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_,
-                                          layout_);
+    position_ =
+        &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_, layout_);
   } else if (stage == Stage::kFit) {
-    if (parameters.w_stretch > 0.0) add_term<StretchEnergy>(parameters.w_stretch, scene.garment, layout_);
+    if (parameters.w_stretch > 0.0)
+      add_term<StretchEnergy>(parameters.w_stretch, scene.garment, layout_);
     if (parameters.w_anchor > 0.0)
       add_term<AnchorEnergy>(parameters.w_anchor, scene.garment.vertices,
                              boundary_loop_vertices(scene.garment.faces), layout_);
@@ -76,7 +75,8 @@ std::vector<double> GarmentProblem::loop_offsets(const Eigen::VectorXd& x) const
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
   std::map<int, const PositionEnergy::Element*> element_of;
-  for (const PositionEnergy::Element& element : position_->elements()) element_of[element.vertex] = &element;
+  for (const PositionEnergy::Element& element : position_->elements())
+    element_of[element.vertex] = &element;
   for (const LoopBone& loop : loop_bones_) {
     double sum = 0.0;
     int count = 0;
@@ -173,13 +173,14 @@ void GarmentProblem::solution_changed(const Eigen::VectorXd& x) {
 double GarmentProblem::max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   const Eigen::VectorXd end = x + dx;
   return contact_->update_swept_candidates(layout_.garment(x), layout_.t(x), layout_.garment(end),
-                                          layout_.t(end), parameters_.ccd);
+                                           layout_.t(end), parameters_.ccd);
 }
 
 double GarmentProblem::step_length(const Eigen::VectorXd& dx) const {
   const auto motion = layout_.garment(dx);
   double length = motion.rows() > 0 ? motion.rowwise().norm().maxCoeff() : 0.0;
-  if (layout_.t_free) length = std::max(length, std::abs(layout_.t(dx)) * contact_->max_displacement());
+  if (layout_.t_free)
+    length = std::max(length, std::abs(layout_.t(dx)) * contact_->max_displacement());
   return length;
 }
 

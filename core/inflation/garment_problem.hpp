@@ -2,14 +2,14 @@
 
 #include <map>
 #include <memory>
-#include <string>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/energies/anchor_energy.hpp"
 #include "core/energies/contact_energy.hpp"
-#include "core/energies/energy_term.hpp"
 #include "core/energies/distance_field.hpp"
+#include "core/energies/energy_term.hpp"
 #include "core/energies/fit_energy.hpp"
 #include "core/energies/position_energy.hpp"
 #include "core/energies/stretch_energy.hpp"
@@ -30,12 +30,12 @@ struct SkeletonMotion {
 
 /// What the solver needs of a scene, all in normalized scene units.
 struct GarmentScene {
-  TriangleMesh garment;        ///< initial garment: start point and rest shape (#Vg×3, #Fg×3)
-  TriangleMesh avatar;         ///< target avatar A (#Va×3, #Fa×3)
-  MatrixX3d shrunk_avatar;     ///< A0 (#Va×3), A's connectivity, free of the garment
-  std::vector<int> avatar_faces_used;  ///< avatar faces the garment can reach; empty: all
+  TriangleMesh garment;     ///< initial garment: start point and rest shape (#Vg×3, #Fg×3)
+  TriangleMesh avatar;      ///< target avatar A (#Va×3, #Fa×3)
+  MatrixX3d shrunk_avatar;  ///< A0 (#Va×3), A's connectivity, free of the garment
+  std::vector<int> avatar_faces_used;       ///< avatar faces the garment can reach; empty: all
   std::optional<SkeletonMotion> skeletons;  ///< L_pos only when given
-  std::vector<int> no_fit;     ///< garment vertex ids
+  std::vector<int> no_fit;                  ///< garment vertex ids
   const DistanceField* distance_field = nullptr;  ///< the avatar's SDF; needed by the fit
 };
 
@@ -111,8 +111,8 @@ class GarmentProblem : public Problem {
   AvatarConstraint constraint_;
   /// Every term, summed in this order.
   std::vector<WeightedTerm> terms_;
-  ContactEnergy* contact_ = nullptr;           ///< in terms_; also bounds steps (CCD)
-  const PositionEnergy* position_ = nullptr;   ///< in terms_ with skeletons
+  ContactEnergy* contact_ = nullptr;          ///< in terms_; also bounds steps (CCD)
+  const PositionEnergy* position_ = nullptr;  ///< in terms_ with skeletons
   std::vector<LoopBone> loop_bones_;
   Eigen::VectorXd term_gradient_;
   /// Sum of the terms whose Hessian pattern is fixed, in their union pattern.

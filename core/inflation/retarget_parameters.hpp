@@ -10,13 +10,13 @@ namespace gr {
 struct RetargetParameters {
   double w_surf = 1.0;
   double w_contact = 1e8;
-  double dhat = 0.002;        ///< barrier support (a distance)
+  double dhat = 0.002;  ///< barrier support (a distance)
   /// Barrier support in the fit step, where a thinner barrier lets the garment settle
   /// closer to the body; 0: dhat. The fit starts where the inflation left every pair
   /// apart, so any positive value is safe.
   double fit_dhat = 0.0;
   double fit_support() const { return fit_dhat > 0.0 ? fit_dhat : dhat; }
-  double w_pos = 10.0;        ///< only used when skeletons are given
+  double w_pos = 10.0;  ///< only used when skeletons are given
   /// Without skeletons nothing else holds the garment's size and place in the fit, which
   /// pulls every fit face near the body onto it, so two fit-step terms do: edge stretch
   /// against the input garment (StretchEnergy) and its boundary loops held at their input
@@ -25,9 +25,9 @@ struct RetargetParameters {
   /// sphere stalled the push on t before t = 1).
   double w_stretch = 1.0;
   double w_anchor = 10.0;
-  double w_fit = 2.0;         ///< fit step only
+  double w_fit = 2.0;            ///< fit step only
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
-  bool self_contact = true;   ///< model garment–garment contact
+  bool self_contact = true;      ///< model garment–garment contact
   /// Model it everywhere, also inside regions that provably cannot fold onto themselves
   /// during a step (core/candidates/fold_free_regions.hpp).
   bool self_contact_everywhere = false;
@@ -51,9 +51,9 @@ struct RetargetParameters {
 
   // Augmented Lagrangian (Algorithm 1).
   double initial_lambda1 = 1.0;
-  double max_lambda1 = 1e6;       ///< lambda1 doubles while below this and eta < eta_target
+  double max_lambda1 = 1e6;  ///< lambda1 doubles while below this and eta < eta_target
   double eta_target = 0.99;
-  int max_al_rounds = 60;         ///< Newton solves before giving up
+  int max_al_rounds = 60;  ///< Newton solves before giving up
 };
 
 }  // namespace gr

@@ -21,9 +21,8 @@ void write_file_atomically(const std::string& path,
     throw OutputError(path + ": output folder '" + folder.string() + "' does not exist");
 
   std::random_device entropy;
-  const fs::path temporary =
-      folder / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()) + "_" +
-                std::to_string(entropy()));
+  const fs::path temporary = folder / ("." + target.filename().string() + ".tmp" +
+                                       std::to_string(getpid()) + "_" + std::to_string(entropy()));
   try {
     {
       std::ofstream out(temporary, std::ios::binary | std::ios::trunc);

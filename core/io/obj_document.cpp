@@ -1,9 +1,9 @@
 #include "core/io/obj_document.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -32,8 +32,8 @@ int resolve_index(const TextFile& file, std::size_t line, std::string_view token
   if (raw == 0) file.fail(line, fmt::format("{} index 0 (OBJ indices start at 1)", what));
   const long long resolved = raw > 0 ? raw - 1 : count + raw;
   if (resolved < 0 || resolved >= count)
-    file.fail(line, fmt::format("{} index {} out of range (only {} defined so far)", what, raw,
-                                count));
+    file.fail(line,
+              fmt::format("{} index {} out of range (only {} defined so far)", what, raw, count));
   return static_cast<int>(resolved);
 }
 
@@ -128,8 +128,8 @@ ObjDocument read_obj(const TextFile& file) {
   if (!any_extras) doc.position_extras.clear();
 
   if (polygons > 0)
-    doc.warnings.push_back(fmt::format("{}: {} polygons with more than 3 vertices triangulated",
-                                       path, polygons));
+    doc.warnings.push_back(
+        fmt::format("{}: {} polygons with more than 3 vertices triangulated", path, polygons));
   if (skipped_lines > 0)
     doc.warnings.push_back(
         fmt::format("{}: {} lines with unsupported statements ignored", path, skipped_lines));

@@ -21,23 +21,24 @@ struct ObjCorner {
 /// A statement that is not geometry (`o`, `g`, `usemtl`, `s`, and any other), kept
 /// verbatim and replayed in order on export so groups and materials survive.
 struct ObjStatement {
-  std::string text;   ///< the whole line, trimmed
-  int first_face = 0; ///< index of the first face after the statement
+  std::string text;    ///< the whole line, trimmed
+  int first_face = 0;  ///< index of the first face after the statement
 };
 
 /// An OBJ file as read: everything needed to write it back with moved positions.
 /// Polygons are fan-triangulated on read, so every face has three corners.
 struct ObjDocument {
   std::string source_path;
-  MatrixX3d positions;                          ///< #P×3, every `v` line in order
-  std::vector<std::string> position_extras;     ///< per `v`: tokens after x y z (w, colours); empty when none
-  std::vector<std::array<double, 3>> texcoords; ///< every `vt` line (u, v, w; w = 0 when absent)
-  std::vector<int> texcoord_arity;              ///< how many numbers each `vt` line had
-  MatrixX3d normals;                            ///< #N×3, every `vn` line in order
-  std::vector<std::array<ObjCorner, 3>> faces;  ///< #F triangles
-  std::vector<ObjStatement> statements;         ///< `o`, `g`, `usemtl`, `s`, ... in file order
-  std::vector<std::string> material_libraries;  ///< `mtllib` file names, in order
-  std::vector<std::string> warnings;            ///< e.g. "12 polygons triangulated"
+  MatrixX3d positions;  ///< #P×3, every `v` line in order
+  std::vector<std::string>
+      position_extras;  ///< per `v`: tokens after x y z (w, colours); empty when none
+  std::vector<std::array<double, 3>> texcoords;  ///< every `vt` line (u, v, w; w = 0 when absent)
+  std::vector<int> texcoord_arity;               ///< how many numbers each `vt` line had
+  MatrixX3d normals;                             ///< #N×3, every `vn` line in order
+  std::vector<std::array<ObjCorner, 3>> faces;   ///< #F triangles
+  std::vector<ObjStatement> statements;          ///< `o`, `g`, `usemtl`, `s`, ... in file order
+  std::vector<std::string> material_libraries;   ///< `mtllib` file names, in order
+  std::vector<std::string> warnings;             ///< e.g. "12 polygons triangulated"
 };
 
 /// Reads an OBJ file (`v`, `vt`, `vn`, `f` in all four index forms with negative

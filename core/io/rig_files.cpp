@@ -79,8 +79,9 @@ Eigen::MatrixXd read_skin_weights(const std::string& path, int joints, int verti
     const auto tokens = TextFile::split(file.line(i));
     if (tokens.empty()) continue;
     if (static_cast<int>(tokens.size()) != vertices)
-      file.fail(i, fmt::format("skin weight row has {} columns, expected one per avatar vertex ({})",
-                               tokens.size(), vertices));
+      file.fail(i,
+                fmt::format("skin weight row has {} columns, expected one per avatar vertex ({})",
+                            tokens.size(), vertices));
     std::vector<double> row;
     row.reserve(tokens.size());
     for (const auto token : tokens) {
@@ -91,8 +92,9 @@ Eigen::MatrixXd read_skin_weights(const std::string& path, int joints, int verti
     rows.push_back(std::move(row));
   }
   if (static_cast<int>(rows.size()) != joints)
-    file.fail(std::string::npos, fmt::format("skin weights have {} rows, expected one per joint ({})",
-                                             rows.size(), joints));
+    file.fail(
+        std::string::npos,
+        fmt::format("skin weights have {} rows, expected one per joint ({})", rows.size(), joints));
   Eigen::MatrixXd weights(joints, vertices);
   for (int j = 0; j < joints; ++j)
     for (int v = 0; v < vertices; ++v)

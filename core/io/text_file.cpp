@@ -64,8 +64,7 @@ double TextFile::parse_double(std::string_view token, std::size_t line_index) co
   auto [ptr, ec] = std::from_chars(first, last, value);
   if (ec != std::errc() || ptr != last || first == last)
     fail(line_index, "malformed number '" + std::string(token) + "'");
-  if (!std::isfinite(value))
-    fail(line_index, "non-finite number '" + std::string(token) + "'");
+  if (!std::isfinite(value)) fail(line_index, "non-finite number '" + std::string(token) + "'");
   return value;
 }
 

@@ -32,8 +32,8 @@ SimulationMesh make_simulation_mesh(const ObjDocument& doc) {
   for (std::size_t f = 0; f < doc.faces.size(); ++f) {
     std::array<int, 3> tri{};
     for (int k = 0; k < 3; ++k)
-      tri[static_cast<std::size_t>(k)] =
-          sim.obj_to_sim[static_cast<std::size_t>(doc.faces[f][static_cast<std::size_t>(k)].position)];
+      tri[static_cast<std::size_t>(k)] = sim.obj_to_sim[static_cast<std::size_t>(
+          doc.faces[f][static_cast<std::size_t>(k)].position)];
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
       ++sim.collapsed_faces;
       continue;

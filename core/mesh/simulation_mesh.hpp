@@ -9,11 +9,11 @@ namespace gr {
 
 /// The welded position mesh the solver sees, with the maps back to the OBJ document.
 struct SimulationMesh {
-  TriangleMesh mesh;              ///< welded vertices (#V×3) and non-degenerate faces (#F×3)
-  std::vector<int> obj_to_sim;    ///< per OBJ position: welded vertex, or -1 when unreferenced
-  std::vector<int> sim_to_obj;    ///< per welded vertex: first OBJ position that maps to it
-  std::vector<int> face_to_obj;   ///< per simulation face: its face in the OBJ document
-  int collapsed_faces = 0;        ///< faces dropped because two corners welded together
+  TriangleMesh mesh;             ///< welded vertices (#V×3) and non-degenerate faces (#F×3)
+  std::vector<int> obj_to_sim;   ///< per OBJ position: welded vertex, or -1 when unreferenced
+  std::vector<int> sim_to_obj;   ///< per welded vertex: first OBJ position that maps to it
+  std::vector<int> face_to_obj;  ///< per simulation face: its face in the OBJ document
+  int collapsed_faces = 0;       ///< faces dropped because two corners welded together
 };
 
 /// Welds positions that are bit-identical (UV seams written as duplicate `v` lines) and

@@ -39,7 +39,8 @@ PairStencil stencil_of(const Candidates& candidates, std::size_t k) {
   return {{c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]}, true};
 }
 
-std::array<Vector3d, 4> gather(const Eigen::Ref<const MatrixX3d>& V, const std::array<int, 4>& ids) {
+std::array<Vector3d, 4> gather(const Eigen::Ref<const MatrixX3d>& V,
+                               const std::array<int, 4>& ids) {
   return {V.row(ids[0]).transpose(), V.row(ids[1]).transpose(), V.row(ids[2]).transpose(),
           V.row(ids[3]).transpose()};
 }
@@ -96,7 +97,8 @@ BarrierPotential::PairEnergy BarrierPotential::pair_energy(const Candidates& can
   const bool derivatives = gradient || hessian;
   Vector12d gd;
   Matrix12d Hd;
-  const double d_sq = pair_distance_sq(pair, x, derivatives ? &gd : nullptr, hessian ? &Hd : nullptr);
+  const double d_sq =
+      pair_distance_sq(pair, x, derivatives ? &gd : nullptr, hessian ? &Hd : nullptr);
   if (d_sq >= xhat) return {0.0, false};
   if (d_sq <= 0.0) return {std::numeric_limits<double>::infinity(), false};
 
@@ -119,8 +121,8 @@ BarrierPotential::PairEnergy BarrierPotential::pair_energy(const Candidates& can
   if (gradient) *gradient = b * gm + m * db * gd;
   if (hessian) {
     const Matrix12d cross = gm * gd.transpose();
-    *hessian = b * Hm + db * (cross + cross.transpose()) +
-               m * (d2b * gd * gd.transpose() + db * Hd);
+    *hessian =
+        b * Hm + db * (cross + cross.transpose()) + m * (d2b * gd * gd.transpose() + db * Hd);
   }
   return {m * b, true};
 }

@@ -26,7 +26,8 @@ class BarrierPotential {
   double value(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
   /// Gradient, 3#V, vertex-major (x0 y0 z0 x1 ...). Pairs at zero distance (where the
   /// value is +inf) contribute nothing. Sums are in candidate order on any thread count.
-  Eigen::VectorXd gradient(const Candidates& candidates, const Eigen::Ref<const MatrixX3d>& V) const;
+  Eigen::VectorXd gradient(const Candidates& candidates,
+                           const Eigen::Ref<const MatrixX3d>& V) const;
   /// Hessian, 3#V×3#V, compressed column storage; each pair's 12×12 block projected to PSD
   /// (core/common/psd_projection.hpp) when `project_psd`.
   Eigen::SparseMatrix<double> hessian(const Candidates& candidates,

@@ -31,14 +31,16 @@ Eigen::SparseMatrix<double> assemble_stencil_matrices(int vertex_count,
   for (std::size_t k = 0; k < stencils.size(); ++k)
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r)
-        blocks[static_cast<std::size_t>(fill[static_cast<std::size_t>(stencils[k].vertices[c])]++)] =
+        blocks[static_cast<std::size_t>(
+            fill[static_cast<std::size_t>(stencils[k].vertices[c])]++)] =
             BlockRef{stencils[k].vertices[r], static_cast<int>(k), r, c};
 
   // Per column vertex: sort by row vertex and count distinct row vertices.
   std::vector<int> distinct_rows(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const auto& range) {
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
-      const auto first = blocks.begin() + column_start[v], last = blocks.begin() + column_start[v + 1];
+      const auto first = blocks.begin() + column_start[v],
+                 last = blocks.begin() + column_start[v + 1];
       std::stable_sort(first, last, [](const BlockRef& a, const BlockRef& b) {
         return a.row_vertex < b.row_vertex;
       });
@@ -64,7 +66,8 @@ Eigen::SparseMatrix<double> assemble_stencil_matrices(int vertex_count,
       int slot = -1;  // index of the current distinct row block within this column vertex
       for (int b = column_start[v]; b < column_start[v + 1]; ++b) {
         const BlockRef& ref = blocks[static_cast<std::size_t>(b)];
-        const bool fresh = b == column_start[v] || ref.row_vertex != blocks[static_cast<std::size_t>(b) - 1].row_vertex;
+        const bool fresh = b == column_start[v] ||
+                           ref.row_vertex != blocks[static_cast<std::size_t>(b) - 1].row_vertex;
         if (fresh) ++slot;
         const Matrix12d& m = stencils[static_cast<std::size_t>(ref.stencil)].matrix;
         for (int d = 0; d < 3; ++d) {

@@ -17,7 +17,9 @@ double point_segment_distance(const Vector3d& p, const Vector3d& a, const Vector
   return (p - (a + s * d)).norm();
 }
 
-Vector3d joint(const Eigen::Ref<const MatrixX3d>& joints, int j) { return joints.row(j).transpose(); }
+Vector3d joint(const Eigen::Ref<const MatrixX3d>& joints, int j) {
+  return joints.row(j).transpose();
+}
 
 }  // namespace
 
@@ -36,8 +38,8 @@ LegJoints find_leg_joints(const Eigen::Ref<const MatrixX2i>& bones, int joint_co
     int previous = leaf, current = neighbours[leaf][0];
     while (neighbours[current].size() == 2) {
       chain.push_back(current);
-      const int next = neighbours[current][0] == previous ? neighbours[current][1]
-                                                          : neighbours[current][0];
+      const int next =
+          neighbours[current][0] == previous ? neighbours[current][1] : neighbours[current][0];
       previous = current;
       current = next;
     }
@@ -109,8 +111,9 @@ std::vector<LoopBone> assign_loop_bones(const Eigen::Ref<const MatrixX3d>& garme
       }
     }
     if (best < 0) continue;
-    const MovingBone bone{joint(source_joints, bones(best, 0)), joint(source_joints, bones(best, 1)),
-                          joint(target_joints, bones(best, 0)), joint(target_joints, bones(best, 1))};
+    const MovingBone bone{
+        joint(source_joints, bones(best, 0)), joint(source_joints, bones(best, 1)),
+        joint(target_joints, bones(best, 0)), joint(target_joints, bones(best, 1))};
     result.push_back({loop, bone, best});
   }
   return result;

@@ -21,7 +21,7 @@ struct MovingBone {
 struct LoopBone {
   std::vector<int> vertices;  ///< garment vertex ids along the loop
   MovingBone bone;
-  int bone_index = -1;        ///< row of the skeleton's bones, or -1 for the virtual skirt bone
+  int bone_index = -1;  ///< row of the skeleton's bones, or -1 for the virtual skirt bone
 };
 
 /// The hip and knee joints of the two legs, found from the bone graph alone: the legs are

@@ -30,7 +30,9 @@ class Problem {
   virtual bool is_valid(const Eigen::VectorXd& x) { return true; }
   /// How far a step dx moves things, in the problem's length unit: the solver's step
   /// tolerance is compared against it. Default: the largest coordinate change.
-  virtual double step_length(const Eigen::VectorXd& dx) const { return dx.lpNorm<Eigen::Infinity>(); }
+  virtual double step_length(const Eigen::VectorXd& dx) const {
+    return dx.lpNorm<Eigen::Infinity>();
+  }
 };
 
 }  // namespace gr

@@ -122,8 +122,8 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
         return finish(SolverStatus::kConverged,
                       fmt::format("energy fell by {:.3g} (relative {:.3g} <= {:.3g}) over the last "
                                   "{} steps, after {} steps",
-                                  decrease, decrease / reference, options_.energy_tolerance,
-                                  window, result.iterations));
+                                  decrease, decrease / reference, options_.energy_tolerance, window,
+                                  result.iterations));
     }
 
     problem.hessian(x, H);
@@ -133,10 +133,10 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
       // have shortened it.
       if (result.newton_step_length <= options_.step_tolerance &&
           damping_ <= kTrustedDamping * options_.min_damping)
-        return finish(SolverStatus::kConverged,
-                      fmt::format("Newton step {:.3g} <= {:.3g} after {} steps",
-                                  result.newton_step_length, options_.step_tolerance,
-                                  result.iterations));
+        return finish(
+            SolverStatus::kConverged,
+            fmt::format("Newton step {:.3g} <= {:.3g} after {} steps", result.newton_step_length,
+                        options_.step_tolerance, result.iterations));
     } else {
       direction = -g;
       ++result.gradient_descent_steps;
@@ -145,9 +145,9 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     }
     double alpha = std::min(1.0, problem.max_step(x, direction));
     if (!(alpha > 0.0))
-      return finish(SolverStatus::kNoDescent,
-                    fmt::format("no safe step along the search direction after {} steps",
-                                result.iterations));
+      return finish(
+          SolverStatus::kNoDescent,
+          fmt::format("no safe step along the search direction after {} steps", result.iterations));
     // The problem may model this motion differently from the last one (a contact model that
     // leaves out pairs which cannot touch along it): compare trials with its energy at x.
     energy = problem.value(x);
@@ -174,9 +174,10 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
       update_damping(0.0);
     }
     if (!accepted)
-      return finish(SolverStatus::kNoDescent,
-                    fmt::format("line search found no decrease after {} steps (RMS gradient {:.3g})",
-                                result.iterations, result.gradient_norm / sqrt_dofs));
+      return finish(
+          SolverStatus::kNoDescent,
+          fmt::format("line search found no decrease after {} steps (RMS gradient {:.3g})",
+                      result.iterations, result.gradient_norm / sqrt_dofs));
 
     x.swap(trial);
     energy = trial_energy;

@@ -11,9 +11,9 @@ namespace gr {
 
 /// How a solve ended. Only kConverged means the returned point meets the tolerances.
 enum class SolverStatus {
-  kConverged,        ///< gradient, Newton step or energy decrease below its tolerance
-  kIterationLimit,   ///< max_iterations accepted steps without converging
-  kNoDescent,        ///< no step along the search direction lowered the energy (or CCD allowed none)
+  kConverged,       ///< gradient, Newton step or energy decrease below its tolerance
+  kIterationLimit,  ///< max_iterations accepted steps without converging
+  kNoDescent,       ///< no step along the search direction lowered the energy (or CCD allowed none)
   kNonFiniteEnergy,  ///< the energy or gradient at the current point is not finite
 };
 
@@ -71,27 +71,27 @@ struct NewtonOptions {
 
 /// Reported after each accepted step.
 struct NewtonProgress {
-  int iteration;          ///< accepted steps so far
+  int iteration;  ///< accepted steps so far
   double energy;
-  double step;            ///< alpha of the accepted step (fraction of the Newton direction)
-  double gradient_norm;   ///< ||g||_2 at the point before the step
-  double elapsed_seconds; ///< since the solve started
-  double damping;         ///< Levenberg–Marquardt mu for the next step
+  double step;             ///< alpha of the accepted step (fraction of the Newton direction)
+  double gradient_norm;    ///< ||g||_2 at the point before the step
+  double elapsed_seconds;  ///< since the solve started
+  double damping;          ///< Levenberg–Marquardt mu for the next step
 };
 
 using NewtonCallback = std::function<void(const NewtonProgress&)>;
 
 struct NewtonResult {
   SolverStatus status = SolverStatus::kNoDescent;
-  int iterations = 0;            ///< accepted steps
-  double energy = 0.0;           ///< at the returned point
-  double gradient_norm = 0.0;    ///< ||g||_2 at the returned point
+  int iterations = 0;               ///< accepted steps
+  double energy = 0.0;              ///< at the returned point
+  double gradient_norm = 0.0;       ///< ||g||_2 at the returned point
   double newton_step_length = 0.0;  ///< step_length of the last Newton direction computed
   double damping = 0.0;             ///< mu at the end (relative to H's diagonal)
   int factorizations = 0;           ///< Cholesky factorizations, all steps
   int gradient_descent_steps = 0;   ///< directions taken from -g after factorization failures
   double elapsed_seconds = 0.0;
-  std::string message;           ///< one line saying why the solve stopped
+  std::string message;  ///< one line saying why the solve stopped
   bool converged() const { return status == SolverStatus::kConverged; }
 };
 

@@ -20,8 +20,7 @@ class OperationCancelled : public std::runtime_error {
 /// Calls `progress` when there is one and throws OperationCancelled when it asks to stop.
 inline void report_progress(const ProgressCallback& progress, const std::string& stage,
                             double fraction) {
-  if (progress && !progress(stage, fraction))
-    throw OperationCancelled("cancelled during " + stage);
+  if (progress && !progress(stage, fraction)) throw OperationCancelled("cancelled during " + stage);
 }
 
 }  // namespace gr

@@ -78,7 +78,8 @@ void for_each_leaf(LeafManager& leaves, ProgressForwarder& forwarder, Body body)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       if (forwarder.report(-1.0)) return;
-                      for (std::size_t n = range.begin(); n != range.end(); ++n) body(leaves.leaf(n));
+                      for (std::size_t n = range.begin(); n != range.end(); ++n)
+                        body(leaves.leaf(n));
                       done += range.size();
                       forwarder.report(static_cast<double>(done) / static_cast<double>(count));
                     });
@@ -99,18 +100,17 @@ FloatGrid::Ptr unsigned_band(const TriangleMesh& avatar, double voxel_size, floa
                        static_cast<float>(avatar.vertices(v, 2) / voxel_size));
   std::vector<openvdb::Vec3I> triangles(static_cast<std::size_t>(avatar.faces.rows()));
   for (Eigen::Index f = 0; f < avatar.faces.rows(); ++f)
-    triangles[static_cast<std::size_t>(f)] =
-        openvdb::Vec3I(static_cast<unsigned>(avatar.faces(f, 0)),
-                       static_cast<unsigned>(avatar.faces(f, 1)),
-                       static_cast<unsigned>(avatar.faces(f, 2)));
+    triangles[static_cast<std::size_t>(f)] = openvdb::Vec3I(
+        static_cast<unsigned>(avatar.faces(f, 0)), static_cast<unsigned>(avatar.faces(f, 1)),
+        static_cast<unsigned>(avatar.faces(f, 2)));
   const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(
       points, triangles);
   const auto transform = openvdb::math::Transform::createLinearTransform(voxel_size);
   ProgressForwarder forwarder(progress, "unsigned distance");
   forwarder.report(0.0);
-  FloatGrid::Ptr grid = openvdb::tools::meshToVolume<FloatGrid>(
-      forwarder, adapter, *transform, band_voxels, band_voxels,
-      openvdb::tools::UNSIGNED_DISTANCE_FIELD);
+  FloatGrid::Ptr grid =
+      openvdb::tools::meshToVolume<FloatGrid>(forwarder, adapter, *transform, band_voxels,
+                                              band_voxels, openvdb::tools::UNSIGNED_DISTANCE_FIELD);
   forwarder.throw_if_cancelled();
   return grid;
 }
@@ -149,9 +149,7 @@ std::vector<Coord> blocks_near_rims(const TriangleMesh& avatar, double voxel_siz
       edges.emplace_back(std::min(a, b), std::max(a, b));
     }
   std::sort(edges.begin(), edges.end());
-  auto block_of = [](double voxel) {
-    return static_cast<int>(std::floor(voxel / kBlockVoxels));
-  };
+  auto block_of = [](double voxel) { return static_cast<int>(std::floor(voxel / kBlockVoxels)); };
   std::vector<Coord> blocks;
   for (std::size_t e = 0; e < edges.size();) {
     std::size_t same = e + 1;
@@ -163,9 +161,12 @@ std::vector<Coord> blocks_near_rims(const TriangleMesh& avatar, double voxel_siz
       const int samples = static_cast<int>(std::ceil((b - a).norm())) + 1;
       for (int k = 0; k <= samples; ++k) {
         const Vector3d x = a + (b - a) * (static_cast<double>(k) / samples);
-        for (int i = block_of(x.x() - kRimDistanceVoxels); i <= block_of(x.x() + kRimDistanceVoxels); ++i)
-          for (int j = block_of(x.y() - kRimDistanceVoxels); j <= block_of(x.y() + kRimDistanceVoxels); ++j)
-            for (int l = block_of(x.z() - kRimDistanceVoxels); l <= block_of(x.z() + kRimDistanceVoxels); ++l)
+        for (int i = block_of(x.x() - kRimDistanceVoxels);
+             i <= block_of(x.x() + kRimDistanceVoxels); ++i)
+          for (int j = block_of(x.y() - kRimDistanceVoxels);
+               j <= block_of(x.y() + kRimDistanceVoxels); ++j)
+            for (int l = block_of(x.z() - kRimDistanceVoxels);
+                 l <= block_of(x.z() + kRimDistanceVoxels); ++l)
               blocks.emplace_back(i, j, l);
       }
     }
@@ -287,7 +288,8 @@ void fill_interior_tiles(FloatTree& tree, const TriangleTree& surface, double vo
     it.getBoundingBox(box);
     const openvdb::Vec3d lo = world_of(box.min(), voxel_size);
     const openvdb::Vec3d hi = world_of(box.max(), voxel_size);
-    const Eigen::AlignedBox3d tile_box(Vector3d(lo.x(), lo.y(), lo.z()), Vector3d(hi.x(), hi.y(), hi.z()));
+    const Eigen::AlignedBox3d tile_box(Vector3d(lo.x(), lo.y(), lo.z()),
+                                       Vector3d(hi.x(), hi.y(), hi.z()));
     if (!bounds.intersects(tile_box)) continue;
     tiles.push_back({box.min(), it.getLevel(), tile_box.center()});
   }
@@ -309,7 +311,8 @@ void fill_interior_distances(FloatTree& tree, const TriangleTree& surface, doubl
     for (auto v = leaf.beginValueOn(); v; ++v) {
       if (*v != kInteriorPending) continue;
       const openvdb::Vec3d p = world_of(v.getCoord(), voxel_size);
-      v.setValue(-static_cast<float>(std::sqrt(surface.distance_sq(Vector3d(p.x(), p.y(), p.z())))));
+      v.setValue(
+          -static_cast<float>(std::sqrt(surface.distance_sq(Vector3d(p.x(), p.y(), p.z())))));
     }
   });
 }

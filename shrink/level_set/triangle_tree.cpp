@@ -45,7 +45,9 @@ TriangleTree::TriangleTree(const TriangleMesh& mesh, double far_field_ratio)
     face_ids_[static_cast<std::size_t>(f)] = f;
     centroids[static_cast<std::size_t>(f)] =
         (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
-         mesh.vertices.row(mesh.faces(f, 2))).transpose() / 3.0;
+         mesh.vertices.row(mesh.faces(f, 2)))
+            .transpose() /
+        3.0;
   }
   corners_.resize(3 * static_cast<std::size_t>(face_count));
   nodes_.reserve(2 * static_cast<std::size_t>(face_count / kLeafSize + 1));
@@ -95,7 +97,8 @@ TriangleTree::TriangleTree(const TriangleMesh& mesh, double far_field_ratio)
     }
     node.radius = 0.0;
     for (int k = 3 * node.begin; k < 3 * node.end; ++k)
-      node.radius = std::max(node.radius, (corners_[static_cast<std::size_t>(k)] - node.center).norm());
+      node.radius =
+          std::max(node.radius, (corners_[static_cast<std::size_t>(k)] - node.center).norm());
   }
 }
 
@@ -113,11 +116,10 @@ int TriangleTree::build(int begin, int end, std::vector<Vector3d>& centroids) {
   // Sort a permutation so face ids and centroids move together.
   std::vector<int> order(static_cast<std::size_t>(end - begin));
   for (int k = 0; k < end - begin; ++k) order[static_cast<std::size_t>(k)] = begin + k;
-  std::nth_element(order.begin(), order.begin() + (middle - begin), order.end(),
-                   [&](int x, int y) {
-                     return centroids[static_cast<std::size_t>(x)][axis] <
-                            centroids[static_cast<std::size_t>(y)][axis];
-                   });
+  std::nth_element(order.begin(), order.begin() + (middle - begin), order.end(), [&](int x, int y) {
+    return centroids[static_cast<std::size_t>(x)][axis] <
+           centroids[static_cast<std::size_t>(y)][axis];
+  });
   std::vector<int> ids(order.size());
   std::vector<Vector3d> cents(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
@@ -195,9 +197,8 @@ double TriangleTree::winding_number(const Vector3d& p) const {
         second_order += -3.0 * inv_r5 * (2.0 * tr[a] + r[a] * node.second[a].trace()) +
                         15.0 * inv_r5 / distance_sq * r[a] * r.dot(tr);
       }
-      solid_angle += node.dipole.dot(r) * inv_r3 +
-                     node.moment.trace() * inv_r3 - 3.0 * r.dot(node.moment * r) * inv_r5 +
-                     0.5 * second_order;
+      solid_angle += node.dipole.dot(r) * inv_r3 + node.moment.trace() * inv_r3 -
+                     3.0 * r.dot(node.moment * r) * inv_r5 + 0.5 * second_order;
       continue;
     }
     if (node.left < 0) {
@@ -216,7 +217,8 @@ double TriangleTree::winding_number(const Vector3d& p) const {
 double TriangleTree::exact_winding_number(const Vector3d& p) const {
   double solid_angle = 0.0;
   for (std::size_t k = 0; k < face_ids_.size(); ++k)
-    solid_angle += triangle_solid_angle(corners_[3 * k], corners_[3 * k + 1], corners_[3 * k + 2], p);
+    solid_angle +=
+        triangle_solid_angle(corners_[3 * k], corners_[3 * k + 1], corners_[3 * k + 2], p);
   return solid_angle / kFourPi;
 }
 

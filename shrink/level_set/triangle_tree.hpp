@@ -62,14 +62,14 @@ class TriangleTree {
  private:
   struct Node {
     Eigen::AlignedBox3d box;
-    Vector3d center;   ///< area-weighted centroid of the node's triangles
-    Vector3d dipole;   ///< sum of area-weighted normals (half cross products)
+    Vector3d center;         ///< area-weighted centroid of the node's triangles
+    Vector3d dipole;         ///< sum of area-weighted normals (half cross products)
     Eigen::Matrix3d moment;  ///< Σ N ⊗ ∫(y − center), per unit area: first moment
     Eigen::Matrix3d second[3];  ///< second[a] = Σ N_a ∫(y − center)(y − center)ᵀ per unit area
-    double radius = 0; ///< farthest triangle corner from `center`
-    int begin = 0;     ///< first triangle (in tree order)
-    int end = 0;       ///< one past the last
-    int left = -1;     ///< child nodes, -1 for a leaf
+    double radius = 0;          ///< farthest triangle corner from `center`
+    int begin = 0;              ///< first triangle (in tree order)
+    int end = 0;                ///< one past the last
+    int left = -1;              ///< child nodes, -1 for a leaf
     int right = -1;
   };
 

@@ -47,9 +47,9 @@ Vector3d crossing_point(const TriangleMesh& first, int f, const TriangleMesh& se
     const TriangleMesh& face = pass == 0 ? second : first;
     const int e = pass == 0 ? f : g, t = pass == 0 ? g : f;
     for (int c = 0; c < 3; ++c)
-      if (auto hit = segment_triangle_point(corner(edges, e, c), corner(edges, e, (c + 1) % 3),
-                                            corner(face, t, 0), corner(face, t, 1),
-                                            corner(face, t, 2)))
+      if (auto hit =
+              segment_triangle_point(corner(edges, e, c), corner(edges, e, (c + 1) % 3),
+                                     corner(face, t, 0), corner(face, t, 1), corner(face, t, 2)))
         return *hit;
   }
   const Vector3d a = (corner(first, f, 0) + corner(first, f, 1) + corner(first, f, 2)) / 3.0;

@@ -46,9 +46,9 @@ void check_inputs(const TriangleMesh& avatar, const Skeleton& source, const Skel
     throw std::invalid_argument("shrink_to_skeleton: a bone index is out of range");
   if (weights.size() != 0 &&
       (weights.rows() != target.joints.rows() || weights.cols() != avatar.vertices.rows()))
-    throw std::invalid_argument(fmt::format(
-        "shrink_to_skeleton: skin weights are {}x{}, expected {} joints x {} vertices",
-        weights.rows(), weights.cols(), target.joints.rows(), avatar.vertices.rows()));
+    throw std::invalid_argument(
+        fmt::format("shrink_to_skeleton: skin weights are {}x{}, expected {} joints x {} vertices",
+                    weights.rows(), weights.cols(), target.joints.rows(), avatar.vertices.rows()));
   if (!(options.pullback > 0.0 && options.pullback <= 1.0) || options.max_halvings < 0)
     throw std::invalid_argument("shrink_to_skeleton: pullback must be in (0, 1]");
   if (!(options.collapse_step > 0.0 && options.collapse_step < 1.0) ||
@@ -80,9 +80,9 @@ Eigen::Index vertex_bone(const Skeleton& target, const Eigen::MatrixXd& weights,
 
 /// Each avatar vertex on its source bone: shrunk position = on_bone + pullback * offset.
 struct BonePlacement {
-  MatrixX3d on_bone;              ///< #V×3: the vertex's point on its source bone
-  MatrixX3d offset;               ///< #V×3: its offset from the target bone, turned
-  std::vector<Eigen::Index> bone; ///< its bone (row of the target's bone list)
+  MatrixX3d on_bone;               ///< #V×3: the vertex's point on its source bone
+  MatrixX3d offset;                ///< #V×3: its offset from the target bone, turned
+  std::vector<Eigen::Index> bone;  ///< its bone (row of the target's bone list)
 };
 
 BonePlacement place_on_bones(const TriangleMesh& avatar, const Skeleton& source_skeleton,
@@ -131,7 +131,8 @@ Eigen::MatrixXi joint_hops(const Skeleton& skeleton) {
 /// Pulls the vertices of crossing faces toward the joints where their bones meet.
 class CrossingCollapse {
  public:
-  CrossingCollapse(const TriangleMesh& avatar, const Skeleton& source, const BonePlacement& placement)
+  CrossingCollapse(const TriangleMesh& avatar, const Skeleton& source,
+                   const BonePlacement& placement)
       : faces_(avatar.faces), source_(source), placement_(placement), hops_(joint_hops(source)),
         collapsed_(static_cast<std::size_t>(avatar.vertices.rows()), 0) {}
 
@@ -176,12 +177,13 @@ class CrossingCollapse {
     for (Eigen::Index j = 0; j < source_.joints.rows(); ++j) {
       int farthest = 0, total = 0;
       for (Eigen::Index bone : bones) {
-        const int hops = std::min(hops_(j, source_.bones(bone, 0)), hops_(j, source_.bones(bone, 1)));
+        const int hops =
+            std::min(hops_(j, source_.bones(bone, 0)), hops_(j, source_.bones(bone, 1)));
         farthest = std::max(farthest, hops);
         total += hops;
       }
-      const std::tuple<int, int, double> score{farthest, total,
-                                               (source_.joints.row(j).transpose() - x).squaredNorm()};
+      const std::tuple<int, int, double> score{
+          farthest, total, (source_.joints.row(j).transpose() - x).squaredNorm()};
       if (score < best) {
         best = score;
         best_joint = j;
@@ -224,8 +226,9 @@ ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& 
     for (int round = 0;; ++round) {
       ++result.certifications;
       conflict = find_shrink_conflict(shrunk, garment);
-      report_progress(options.progress, "shrink",
-                      static_cast<double>(attempt * checks_per_pullback + round + 1) / total_checks);
+      report_progress(
+          options.progress, "shrink",
+          static_cast<double>(attempt * checks_per_pullback + round + 1) / total_checks);
       if (!conflict) {
         result.vertices = shrunk.vertices;
         result.pullback = pullback;

@@ -32,9 +32,10 @@ inline double brute_force_winding_number(const TriangleMesh& mesh, const Vector3
 inline double brute_force_distance(const TriangleMesh& mesh, const Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    best = std::min(best, point_triangle_distance_sq(p, mesh.vertices.row(mesh.faces(f, 0)).transpose(),
-                                                    mesh.vertices.row(mesh.faces(f, 1)).transpose(),
-                                                    mesh.vertices.row(mesh.faces(f, 2)).transpose()));
+    best = std::min(best,
+                    point_triangle_distance_sq(p, mesh.vertices.row(mesh.faces(f, 0)).transpose(),
+                                               mesh.vertices.row(mesh.faces(f, 1)).transpose(),
+                                               mesh.vertices.row(mesh.faces(f, 2)).transpose()));
   return std::sqrt(best);
 }
 

@@ -2,8 +2,8 @@
 #include <random>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <tbb/parallel_for.h>
+#include <catch2/catch.hpp>
 
 #include "core/mesh/primitives.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
@@ -57,7 +57,8 @@ TEST_CASE("an inverted mesh gets the same signed distance", "[shrink][sdf]") {
   REQUIRE(outward.voxel_value(Eigen::Vector3i::Zero()) < -0.35);
 }
 
-TEST_CASE("a narrow-band grid keeps the band and holds -background deeper inside", "[shrink][sdf]") {
+TEST_CASE("a narrow-band grid keeps the band and holds -background deeper inside",
+          "[shrink][sdf]") {
   const TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.013, -0.021, 0.007), 16, 32);
   const double h = 0.02;
   const SignedDistanceGrid full = build_signed_distance(sphere, h);
@@ -101,7 +102,8 @@ void check_derivatives(const GridDistanceField& field, const Vector3d& p, double
   for (int a = 0; a < 3; ++a) {
     const Vector3d e = step * Vector3d::Unit(a);
     Vector3d g_plus, g_minus;
-    fd_gradient[a] = (field.evaluate(p + e, &g_plus) - field.evaluate(p - e, &g_minus)) / (2 * step);
+    fd_gradient[a] =
+        (field.evaluate(p + e, &g_plus) - field.evaluate(p - e, &g_minus)) / (2 * step);
     fd_hessian.col(a) = (g_plus - g_minus) / (2 * step);
   }
   CAPTURE(p.transpose(), gradient.transpose(), fd_gradient.transpose(), hessian, fd_hessian);
@@ -112,7 +114,8 @@ void check_derivatives(const GridDistanceField& field, const Vector3d& p, double
 
 }  // namespace
 
-TEST_CASE("tricubic sampler: gradient and Hessian match finite differences", "[shrink][sdf][grad]") {
+TEST_CASE("tricubic sampler: gradient and Hessian match finite differences",
+          "[shrink][sdf][grad]") {
   const TriangleMesh sphere = uv_sphere(0.5, Vector3d(0.01, 0.02, -0.03), 16, 32);
   const GridDistanceField field(build_signed_distance(sphere, 0.04, {0.12, {}}));
   SECTION("inside, on the surface and in the band") {
@@ -152,7 +155,8 @@ TEST_CASE("tricubic sampler: extrapolation keeps growing, sign and threads", "[s
   std::vector<Vector3d> points;
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> coordinate(-0.8, 0.8);
-  for (int i = 0; i < 2000; ++i) points.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
+  for (int i = 0; i < 2000; ++i)
+    points.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
   std::vector<double> serial(points.size()), parallel(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) serial[i] = field.evaluate(points[i]);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {

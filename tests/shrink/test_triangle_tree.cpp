@@ -15,8 +15,8 @@ using test::brute_force_winding_number;
 
 TEST_CASE("point-triangle distance against dense sampling", "[shrink][distance]") {
   const Vector3d a(0, 0, 0), b(1, 0, 0);
-  const Vector3d c = GENERATE(Vector3d(0, 1, 0), Vector3d(2, 1e-12, 0), Vector3d(0.5, 0, 0),
-                              Vector3d(0, 0, 0));
+  const Vector3d c =
+      GENERATE(Vector3d(0, 1, 0), Vector3d(2, 1e-12, 0), Vector3d(0.5, 0, 0), Vector3d(0, 0, 0));
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coordinate(-1.0, 2.0);
   for (int trial = 0; trial < 50; ++trial) {

@@ -2,9 +2,9 @@
 #include <fstream>
 #include <string>
 
+#include <sys/wait.h>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 #include "core/io/obj_document.hpp"
 #include "core/mesh/simulation_mesh.hpp"
@@ -14,7 +14,8 @@
 namespace {
 
 int run_cli(const std::string& arguments) {
-  const int status = std::system((std::string(GR_CLI_PATH) + " " + arguments + " --quiet > /dev/null 2>&1").c_str());
+  const int status = std::system(
+      (std::string(GR_CLI_PATH) + " " + arguments + " --quiet > /dev/null 2>&1").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -35,7 +36,8 @@ TEST_CASE("shrink command writes a certified shrunk avatar over the garment", "[
   const auto out = gr::test::fresh_temp_dir("shrink_dress_form");
   const std::string garment = gr::test::project_file("tools/scenes/dress_form/garment.obj");
   const std::string avatar = gr::test::project_file("tools/scenes/dress_form/avatar.obj");
-  REQUIRE(run_cli("shrink" + dress_form_inputs() + " --voxel-size 0.02 --out " + out.string()) == 0);
+  REQUIRE(run_cli("shrink" + dress_form_inputs() + " --voxel-size 0.02 --out " + out.string()) ==
+          0);
   const nlohmann::json report = read_json(out / "report.json");
   REQUIRE(report["found"] == true);
   REQUIRE(report["mode"] == "levelset");
@@ -52,7 +54,9 @@ TEST_CASE("shrink command writes a certified shrunk avatar over the garment", "[
   const gr::SimulationMesh cloth = gr::make_simulation_mesh(gr::read_obj(garment));
   REQUIRE(gr::find_intersecting_face_pairs(shrunk.mesh, cloth.mesh).count == 0);
   // ... and the original avatar is not (the scene needs the shrink).
-  REQUIRE(gr::find_intersecting_face_pairs(gr::make_simulation_mesh(original).mesh, cloth.mesh).count > 0);
+  REQUIRE(
+      gr::find_intersecting_face_pairs(gr::make_simulation_mesh(original).mesh, cloth.mesh).count >
+      0);
 }
 
 TEST_CASE("shrink command exits 3 and names the conflict when no shrink exists", "[cli][shrink]") {
@@ -64,8 +68,8 @@ TEST_CASE("shrink command exits 3 and names the conflict when no shrink exists",
     obj << "v -1 0.8 -1\nv 2 0.8 -1\nv 2 0.8 1\nv -1 0.8 1\nf 1 2 3\nf 1 3 4\n";
   }
   const std::string avatar = gr::test::project_file("tools/scenes/dress_form/avatar.obj");
-  REQUIRE(run_cli("shrink --garment " + sheet + " --avatar " + avatar + " --voxel-size 0.02 --out " +
-                  out.string()) == 3);
+  REQUIRE(run_cli("shrink --garment " + sheet + " --avatar " + avatar +
+                  " --voxel-size 0.02 --out " + out.string()) == 3);
   const nlohmann::json report = read_json(out / "report.json");
   REQUIRE(report["found"] == false);
   REQUIRE(report["conflict"]["garment_face"].get<int>() >= 0);

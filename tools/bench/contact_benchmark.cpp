@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include "core/candidates/candidates.hpp"
-#include "core/common/stopwatch.hpp"
 #include "core/ccd/ccd.hpp"
+#include "core/common/stopwatch.hpp"
 #include "core/potentials/barrier_potential.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/scene.hpp"
@@ -84,8 +84,11 @@ int main(int argc, char** argv) {
   app.add_option("--seconds", seconds, "minimum timing per row");
   CLI11_PARSE(app, argc, argv);
 
-  const std::vector<SceneFiles> scenes{{"foxgirl_skirt", "skirt", "foxgirl"}, {"goblin_puffer", "puffer", "goblin"}};
-  std::printf("dhat = %g; V1 = garment + N(0, 0.002) per coordinate, avatar grown 1%% about its centre\n\n", dhat);
+  const std::vector<SceneFiles> scenes{{"foxgirl_skirt", "skirt", "foxgirl"},
+                                       {"goblin_puffer", "puffer", "goblin"}};
+  std::printf(
+      "dhat = %g; V1 = garment + N(0, 0.002) per coordinate, avatar grown 1%% about its centre\n\n",
+      dhat);
   std::printf("| scene | threads | operation | pairs | ms/call | pairs/s |\n");
   std::printf("| --- | ---: | --- | ---: | ---: | ---: |\n");
   for (const SceneFiles& files : scenes) {
@@ -98,30 +101,44 @@ int main(int argc, char** argv) {
       const Eigen::VectorXd g = potential.gradient(candidates, s.V0);
       for (Eigen::Index i = 0; i < g.size(); i += 3) active += g.segment<3>(i).squaredNorm() > 0.0;
     }
-    std::fprintf(stderr, "%s: %d garment + %d avatar vertices, %zu candidates (%zu PT, %zu EE), %zu vertices in contact, %zu swept candidates, min distance %.3g\n",
-                 files.name.c_str(), s.mesh.garment_vertex_count, s.mesh.avatar_vertex_count, candidates.size(),
-                 candidates.point_triangle.size(), candidates.edge_edge.size(), active, swept.size(),
-                 potential.minimum_distance(candidates, s.V0));
+    std::fprintf(stderr,
+                 "%s: %d garment + %d avatar vertices, %zu candidates (%zu PT, %zu EE), %zu "
+                 "vertices in contact, %zu swept candidates, min distance %.3g\n",
+                 files.name.c_str(), s.mesh.garment_vertex_count, s.mesh.avatar_vertex_count,
+                 candidates.size(), candidates.point_triangle.size(), candidates.edge_edge.size(),
+                 active, swept.size(), potential.minimum_distance(candidates, s.V0));
     for (const int threads : {1, 2}) {
-      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                static_cast<std::size_t>(threads));
       const auto row = [&](const char* operation, std::size_t pairs, double ms) {
-        std::printf("| %s | %d | %s | %zu | %.3f | %.3g |\n", files.name.c_str(), threads, operation, pairs, ms,
-                    ms > 0.0 ? 1e3 * static_cast<double>(pairs) / ms : 0.0);
+        std::printf("| %s | %d | %s | %zu | %.3f | %.3g |\n", files.name.c_str(), threads,
+                    operation, pairs, ms, ms > 0.0 ? 1e3 * static_cast<double>(pairs) / ms : 0.0);
       };
       row("broad phase, static (find_candidates)", candidates.size(),
-          median_ms([&] { sink = static_cast<double>(gr::find_candidates(s.mesh, s.V0, dhat).size()); }, seconds));
+          median_ms(
+              [&] { sink = static_cast<double>(gr::find_candidates(s.mesh, s.V0, dhat).size()); },
+              seconds));
       row("broad phase, swept (find_swept_candidates)", swept.size(),
-          median_ms([&] { sink = static_cast<double>(gr::find_swept_candidates(s.mesh, s.V0, s.V1, dhat).size()); },
-                    seconds));
-      row("barrier value", candidates.size(), median_ms([&] { sink = potential.value(candidates, s.V0); }, seconds));
+          median_ms(
+              [&] {
+                sink =
+                    static_cast<double>(gr::find_swept_candidates(s.mesh, s.V0, s.V1, dhat).size());
+              },
+              seconds));
+      row("barrier value", candidates.size(),
+          median_ms([&] { sink = potential.value(candidates, s.V0); }, seconds));
       row("barrier gradient", candidates.size(),
           median_ms([&] { sink = potential.gradient(candidates, s.V0).sum(); }, seconds));
       row("barrier Hessian (PSD-projected, assembled)", candidates.size(),
           median_ms([&] { sink = potential.hessian(candidates, s.V0).sum(); }, seconds));
-      row("barrier value + gradient + Hessian", candidates.size(), median_ms([&] {
-            sink = potential.value(candidates, s.V0) + potential.gradient(candidates, s.V0).sum() +
-                   potential.hessian(candidates, s.V0).sum();
-          }, seconds));
+      row("barrier value + gradient + Hessian", candidates.size(),
+          median_ms(
+              [&] {
+                sink = potential.value(candidates, s.V0) +
+                       potential.gradient(candidates, s.V0).sum() +
+                       potential.hessian(candidates, s.V0).sum();
+              },
+              seconds));
       double step = 0.0;
       row("CCD max_step over swept candidates", swept.size(),
           median_ms([&] { step = gr::max_step(swept, s.V0, s.V1); }, seconds));

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "core/common/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -31,20 +31,23 @@ struct BenchScene {
 std::vector<BenchScene> default_scenes(const std::string& project, const std::string& shared) {
   std::vector<BenchScene> scenes;
   const std::string bundled = project + "/tools/scenes/dress_form/";
-  scenes.push_back({"dress_form",
-                    {bundled + "garment.obj", bundled + "avatar.obj", "", "", "", bundled + "no-fit.txt"},
-                    false});
+  scenes.push_back(
+      {"dress_form",
+       {bundled + "garment.obj", bundled + "avatar.obj", "", "", "", bundled + "no-fit.txt"},
+       false});
   if (fs::exists(shared)) {
-    scenes.push_back({"foxgirl_skirt",
-                      {shared + "/garments/skirt/garment.obj", shared + "/avatars/foxgirl/avatar.obj",
-                       shared + "/garments/skirt/skeleton.obj", shared + "/avatars/foxgirl/skeleton.obj",
-                       "", shared + "/garments/skirt/no-fit.txt"},
-                      true});
-    scenes.push_back({"goblin_puffer",
-                      {shared + "/garments/puffer/garment.obj", shared + "/avatars/goblin/avatar.obj",
-                       shared + "/garments/puffer/skeleton.obj", shared + "/avatars/goblin/skeleton.obj",
-                       shared + "/avatars/goblin/skin.txt", shared + "/garments/puffer/no-fit.txt"},
-                      false});
+    scenes.push_back(
+        {"foxgirl_skirt",
+         {shared + "/garments/skirt/garment.obj", shared + "/avatars/foxgirl/avatar.obj",
+          shared + "/garments/skirt/skeleton.obj", shared + "/avatars/foxgirl/skeleton.obj", "",
+          shared + "/garments/skirt/no-fit.txt"},
+         true});
+    scenes.push_back(
+        {"goblin_puffer",
+         {shared + "/garments/puffer/garment.obj", shared + "/avatars/goblin/avatar.obj",
+          shared + "/garments/puffer/skeleton.obj", shared + "/avatars/goblin/skeleton.obj",
+          shared + "/avatars/goblin/skin.txt", shared + "/garments/puffer/no-fit.txt"},
+         false});
   }
   return scenes;
 }
@@ -70,17 +73,26 @@ std::string csv_row(const Run& run) {
       "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
       run.scene, run.config, run.quality, run.preset ? 1 : 0, r.inflate_status + "/" + r.fit_status,
       r.certified ? 1 : 0, p.solver.newton.gradient_tolerance, p.voxel_size, p.solver.dhat,
-      p.solver.fit_samples_per_face, r.seconds.shrink,
-      r.seconds.inflate, r.seconds.fit, r.seconds.certify, r.seconds.total,
-      r.inflate_newton_iterations, r.fit_newton_iterations, r.al_rounds, r.peak_memory_mb,
-      r.fit_error.mean, r.fit_error.p95, r.shape.mean_edge_change,
+      p.solver.fit_samples_per_face, r.seconds.shrink, r.seconds.inflate, r.seconds.fit,
+      r.seconds.certify, r.seconds.total, r.inflate_newton_iterations, r.fit_newton_iterations,
+      r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95, r.shape.mean_edge_change,
       r.shape.max_edge_change, r.surface_energy_per_area, r.min_distance / r.scene_scale);
 }
 
-const std::vector<std::string> kTableColumns = {
-    "scene", "config", "certified", "shrink s", "inflate s", "fit s", "certify s", "total s",
-    "Newton (inflate/fit)", "AL rounds", "peak MB", "fit error mean / p95", "edge change mean / max",
-    "min clearance"};
+const std::vector<std::string> kTableColumns = {"scene",
+                                                "config",
+                                                "certified",
+                                                "shrink s",
+                                                "inflate s",
+                                                "fit s",
+                                                "certify s",
+                                                "total s",
+                                                "Newton (inflate/fit)",
+                                                "AL rounds",
+                                                "peak MB",
+                                                "fit error mean / p95",
+                                                "edge change mean / max",
+                                                "min clearance"};
 
 std::vector<std::string> table_row(const Run& run) {
   const auto& r = run.result.report;
@@ -135,8 +147,9 @@ void write_results_page(const fs::path& out, const std::vector<Run>& runs, bool 
   if (plotted) {
     std::ifstream png(out / "tradeoff.png", std::ios::binary);
     page.plot_png.assign(std::istreambuf_iterator<char>(png), std::istreambuf_iterator<char>());
-    page.plot_caption = "wall time against mean fit error and against mean edge-length change "
-                        "(squares: presets)";
+    page.plot_caption =
+        "wall time against mean fit error and against mean edge-length change "
+        "(squares: presets)";
   }
   gr::write_benchmark_page((out / "results.html").string(), page);
 }
@@ -145,16 +158,18 @@ void write_results_page(const fs::path& out, const std::vector<Run>& runs, bool 
 int plot(const std::string& project, const fs::path& out) {
   const fs::path venv = out / ".venv";
   if (!fs::exists(venv / "bin" / "python")) {
-    const std::string make = fmt::format(
-        "python3 -m venv '{}' && '{}/bin/pip' install --quiet matplotlib", venv.string(), venv.string());
+    const std::string make =
+        fmt::format("python3 -m venv '{}' && '{}/bin/pip' install --quiet matplotlib",
+                    venv.string(), venv.string());
     if (std::system(make.c_str()) != 0) {
-      std::fprintf(stderr, "retarget_benchmark: cannot set up matplotlib; table written, no plot\n");
+      std::fprintf(stderr,
+                   "retarget_benchmark: cannot set up matplotlib; table written, no plot\n");
       return 1;
     }
   }
-  const std::string run = fmt::format("'{}/bin/python' '{}/tools/bench/plot_tradeoff.py' '{}' '{}'",
-                                      venv.string(), project, (out / "results.csv").string(),
-                                      (out / "tradeoff.png").string());
+  const std::string run =
+      fmt::format("'{}/bin/python' '{}/tools/bench/plot_tradeoff.py' '{}' '{}'", venv.string(),
+                  project, (out / "results.csv").string(), (out / "tradeoff.png").string());
   return std::system(run.c_str()) == 0 ? 0 : 1;
 }
 
@@ -173,7 +188,8 @@ int main(int argc, char** argv) {
   app.add_option("--project", project, "Project root (for the bundled scene)");
   app.add_option("--shared-data", shared, "Folder of the shared scenes");
   app.add_option("--out", out, "Where results go");
-  app.add_option("--scene", only, "Run only these scenes (dress_form, foxgirl_skirt, goblin_puffer)");
+  app.add_option("--scene", only,
+                 "Run only these scenes (dress_form, foxgirl_skirt, goblin_puffer)");
   app.add_option("--presets", presets, "Quality presets to run");
   app.add_option("--eps-sweep", eps_sweep, "eps_tol values run on top of the balanced preset");
   app.add_option("--voxel-sweep", voxel_sweep, "Voxel sizes run on top of the balanced preset");
@@ -226,9 +242,11 @@ int main(int argc, char** argv) {
 
   std::string csv = kCsvHeader;
   for (const Run& run : runs) csv += csv_row(run);
-  gr::write_file_atomically((fs::path(out) / "results.csv").string(), [&](std::ostream& s) { s << csv; });
+  gr::write_file_atomically((fs::path(out) / "results.csv").string(),
+                            [&](std::ostream& s) { s << csv; });
   const std::string md = markdown_table(runs);
-  gr::write_file_atomically((fs::path(out) / "results.md").string(), [&](std::ostream& s) { s << md; });
+  gr::write_file_atomically((fs::path(out) / "results.md").string(),
+                            [&](std::ostream& s) { s << md; });
   std::printf("%s", md.c_str());
   const int plotted = plot(project, out);
   write_results_page(out, runs, plotted == 0);

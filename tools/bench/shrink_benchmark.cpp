@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <CLI/CLI.hpp>
 
 #include "core/common/stopwatch.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
@@ -41,22 +41,27 @@ SharedScene load(const std::string& garment, const std::string& avatar) {
   const gr::Normalization n = gr::normalize_scene(scene);
   SharedScene s;
   s.name = avatar + "_" + garment;
-  s.garment = {n.garment_to_scene.apply_rows(scene.garment.mesh.vertices), scene.garment.mesh.faces};
+  s.garment = {n.garment_to_scene.apply_rows(scene.garment.mesh.vertices),
+               scene.garment.mesh.faces};
   s.avatar = {n.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices), scene.avatar.mesh.faces};
-  s.source = {n.garment_to_scene.apply_rows(scene.source_skeleton->joints), scene.source_skeleton->bones};
-  s.target = {n.avatar_to_scene.apply_rows(scene.target_skeleton->joints), scene.target_skeleton->bones};
+  s.source = {n.garment_to_scene.apply_rows(scene.source_skeleton->joints),
+              scene.source_skeleton->bones};
+  s.target = {n.avatar_to_scene.apply_rows(scene.target_skeleton->joints),
+              scene.target_skeleton->bones};
   s.weights = scene.skin_weights;
   return s;
 }
 
 /// Points per second of `evaluate` over points in the avatar's box, all threads.
-double throughput(const gr::GridDistanceField& field, const gr::TriangleMesh& avatar, bool derivatives) {
+double throughput(const gr::GridDistanceField& field, const gr::TriangleMesh& avatar,
+                  bool derivatives) {
   const Eigen::Vector3d lo = avatar.vertices.colwise().minCoeff().transpose();
   const Eigen::Vector3d hi = avatar.vertices.colwise().maxCoeff().transpose();
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Eigen::Vector3d> points(1 << 20);
-  for (auto& p : points) p = lo + (hi - lo).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+  for (auto& p : points)
+    p = lo + (hi - lo).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
   std::vector<double> values(points.size());
   const gr::Stopwatch stopwatch;
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
@@ -80,7 +85,8 @@ FaceSizes face_sizes(const gr::TriangleMesh& mesh) {
     const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)).transpose();
     const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1)).transpose();
     const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2)).transpose();
-    sizes.shortest_edge = std::min({sizes.shortest_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    sizes.shortest_edge =
+        std::min({sizes.shortest_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
     sizes.smallest_area = std::min(sizes.smallest_area, 0.5 * (b - a).cross(c - a).norm());
   }
   return sizes;
@@ -97,13 +103,17 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads")->capture_default_str();
   app.add_option("--voxel-sizes", voxel_sizes, "Voxel sizes (normalized units)");
   app.add_flag("--build-only", build_only, "Only the signed distance table");
-  app.add_option("--exterior-band", exterior_band, "Exterior band (normalized units)")->capture_default_str();
+  app.add_option("--exterior-band", exterior_band, "Exterior band (normalized units)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  tbb::global_control control(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  tbb::global_control control(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(threads));
 
   const std::vector<SharedScene> scenes = {load("skirt", "foxgirl"), load("puffer", "goblin")};
   std::printf("threads: %d, exterior band %.3g\n\n", threads, exterior_band);
-  std::printf("| avatar scene | voxel | depth | build s (band / sign / interior) | build CPU s (all threads) | active voxels | grid MB | deepest | value pts/s | value+grad+hess pts/s |\n");
+  std::printf(
+      "| avatar scene | voxel | depth | build s (band / sign / interior) | build CPU s (all "
+      "threads) | active voxels | grid MB | deepest | value pts/s | value+grad+hess pts/s |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const SharedScene& s : scenes)
     for (double h : voxel_sizes)
@@ -115,7 +125,8 @@ int main(int argc, char** argv) {
         options.exterior_band = exterior_band;
         options.full_depth = full_depth;
         options.progress = [&](const std::string& stage, double) {
-          if (stages.empty() || stages.back().first != stage) stages.emplace_back(stage, stopwatch.seconds());
+          if (stages.empty() || stages.back().first != stage)
+            stages.emplace_back(stage, stopwatch.seconds());
           return true;
         };
         stopwatch.restart();
@@ -130,13 +141,16 @@ int main(int argc, char** argv) {
           split += (k ? " / " : "") +
                    std::to_string(stages[k + 1].second - stages[k].second).substr(0, 5);
         const gr::GridDistanceField field(grid);
-        std::printf("| %s | %.3g | %s | %.3f (%s) | %.3f | %zu | %.1f | %.3f | %.3g | %.3g |\n", s.name.c_str(), h,
-                    full_depth ? "full" : "narrow", build, split.c_str(), cpu, grid.active_voxel_count(), grid.memory_bytes() / 1048576.0, -grid.min_value(),
+        std::printf("| %s | %.3g | %s | %.3f (%s) | %.3f | %zu | %.1f | %.3f | %.3g | %.3g |\n",
+                    s.name.c_str(), h, full_depth ? "full" : "narrow", build, split.c_str(), cpu,
+                    grid.active_voxel_count(), grid.memory_bytes() / 1048576.0, -grid.min_value(),
                     throughput(field, s.avatar, false), throughput(field, s.avatar, true));
       }
 
   if (build_only) return 0;
-  std::printf("\n| scene | mode | voxel | seconds (build + shrink) | result |\n| --- | --- | --- | --- | --- |\n");
+  std::printf(
+      "\n| scene | mode | voxel | seconds (build + shrink) | result |\n| --- | --- | --- | --- | "
+      "--- |\n");
   for (const SharedScene& s : scenes) {
     for (double h : voxel_sizes) {
       const gr::Stopwatch stopwatch;
@@ -145,7 +159,8 @@ int main(int argc, char** argv) {
         const gr::ShrinkResult r =
             gr::shrink_levelset(s.avatar, s.garment, gr::build_signed_distance(s.avatar, h));
         outcome = "certified, depth " + std::to_string(r.depth) + ", medial " +
-                  std::to_string(r.medial_vertices) + ", checks " + std::to_string(r.certifications);
+                  std::to_string(r.medial_vertices) + ", checks " +
+                  std::to_string(r.certifications);
       } catch (const gr::NoValidShrinkError& e) {
         outcome = std::string("no valid shrink: ") + e.conflict().describe();
       }
@@ -155,7 +170,8 @@ int main(int argc, char** argv) {
     const gr::Stopwatch stopwatch;
     std::string outcome;
     try {
-      const gr::ShrinkResult r = gr::shrink_to_skeleton(s.avatar, s.garment, s.source, s.target, s.weights);
+      const gr::ShrinkResult r =
+          gr::shrink_to_skeleton(s.avatar, s.garment, s.source, s.target, s.weights);
       const FaceSizes sizes = face_sizes({r.vertices, s.avatar.faces});
       char line[256];
       std::snprintf(line, sizeof line,
@@ -167,7 +183,8 @@ int main(int argc, char** argv) {
     } catch (const gr::NoValidShrinkError& e) {
       outcome = std::string("no valid shrink: ") + e.conflict().describe();
     }
-    std::printf("| %s | skeleton | - | %.3f | %s |\n", s.name.c_str(), stopwatch.seconds(), outcome.c_str());
+    std::printf("| %s | skeleton | - | %.3f | %s |\n", s.name.c_str(), stopwatch.seconds(),
+                outcome.c_str());
   }
   return 0;
 }

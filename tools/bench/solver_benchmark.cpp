@@ -53,28 +53,32 @@ void inflation_benchmark(const gr::TriangleMesh& garment, gr::TriangleMesh body)
     return;
   }
   gr::RetargetParameters parameters;
-  std::printf("\ninflation: avatar %d vertices (widened 1.08, %zu face pairs cross the skirt), "
-              "A0 narrowed %.1f\n",
-              static_cast<int>(body.vertices.rows()), crossings, narrowing);
+  std::printf(
+      "\ninflation: avatar %d vertices (widened 1.08, %zu face pairs cross the skirt), "
+      "A0 narrowed %.1f\n",
+      static_cast<int>(body.vertices.rows()), crossings, narrowing);
   std::printf("| round | t | lambda1 | lambda2 | Newton steps | status | seconds |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
   const gr::InflationResult result =
       gr::inflate_avatar(scene, parameters, [](const gr::InflationRound& r) {
-        std::printf("| %d | %.6f | %g | %g | %d | %s | %.2f |\n", r.round, r.t, r.lambda1, r.lambda2,
-                    r.solve.iterations, gr::to_string(r.solve.status), r.solve.elapsed_seconds);
+        std::printf("| %d | %.6f | %g | %g | %d | %s | %.2f |\n", r.round, r.t, r.lambda1,
+                    r.lambda2, r.solve.iterations, gr::to_string(r.solve.status),
+                    r.solve.elapsed_seconds);
       });
-  const std::size_t after =
-      gr::find_intersecting_face_pairs(gr::TriangleMesh{result.garment, garment.faces}, scene.avatar).count;
+  const std::size_t after = gr::find_intersecting_face_pairs(
+                                gr::TriangleMesh{result.garment, garment.faces}, scene.avatar)
+                                .count;
   std::printf("%s: %s; %d Newton steps in %.2f s (%.1f ms per step); crossings after: %zu\n",
               gr::to_string(result.status), result.message.c_str(), result.newton_iterations,
-              result.elapsed_seconds, 1e3 * result.elapsed_seconds / std::max(result.newton_iterations, 1),
-              after);
+              result.elapsed_seconds,
+              1e3 * result.elapsed_seconds / std::max(result.newton_iterations, 1), after);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string folder = argc > 1 ? argv[1] : std::string(GR_SHARED_DATA_DIR) + "/garments/skirt";
+  const std::string folder =
+      argc > 1 ? argv[1] : std::string(GR_SHARED_DATA_DIR) + "/garments/skirt";
   const std::string path = folder + "/garment.obj";
   const std::string body_path = folder + "/source_body.obj";
   if (!std::filesystem::exists(path) || !std::filesystem::exists(body_path)) {
@@ -103,19 +107,26 @@ int main(int argc, char** argv) {
   Eigen::SparseMatrix<double> H;
   const double hessian_ms = milliseconds(repeats, [&] { H = energy.hessian(V, 1.0, true); });
   gr::LinearSolver solver;
-  const Eigen::VectorXd shift = Eigen::VectorXd::Constant(H.rows(), 1e-8 * H.diagonal().cwiseAbs().maxCoeff());
+  const Eigen::VectorXd shift =
+      Eigen::VectorXd::Constant(H.rows(), 1e-8 * H.diagonal().cwiseAbs().maxCoeff());
   const double first_factor_ms = milliseconds(1, [&] { solver.factorize(H, shift); });
   const double factor_ms = milliseconds(repeats, [&] { solver.factorize(H, shift); });
   const double solve_ms = milliseconds(repeats, [&] { solver.solve(g); });
 
-  std::printf("garment %s: %d vertices, %d faces, %zu surface elements, %d dofs, %ld Hessian nonzeros\n",
-              path.c_str(), static_cast<int>(garment.vertices.rows()), static_cast<int>(garment.faces.rows()),
-              energy.elements().size(), layout.dof_count(), static_cast<long>(H.nonZeros()));
+  std::printf(
+      "garment %s: %d vertices, %d faces, %zu surface elements, %d dofs, %ld Hessian nonzeros\n",
+      path.c_str(), static_cast<int>(garment.vertices.rows()),
+      static_cast<int>(garment.faces.rows()), energy.elements().size(), layout.dof_count(),
+      static_cast<long>(H.nonZeros()));
   std::printf("| step | ms |\n| --- | --- |\n");
-  std::printf("| L_surf value | %.2f |\n| L_surf gradient | %.2f |\n| L_surf Hessian (PSD-projected) | %.2f |\n",
-              value_ms, gradient_ms, hessian_ms);
-  std::printf("| CHOLMOD analysis + factorization | %.2f |\n| CHOLMOD factorization (analysis reused) | %.2f |\n",
-              first_factor_ms, factor_ms);
+  std::printf(
+      "| L_surf value | %.2f |\n| L_surf gradient | %.2f |\n| L_surf Hessian (PSD-projected) | "
+      "%.2f |\n",
+      value_ms, gradient_ms, hessian_ms);
+  std::printf(
+      "| CHOLMOD analysis + factorization | %.2f |\n| CHOLMOD factorization (analysis reused) | "
+      "%.2f |\n",
+      first_factor_ms, factor_ms);
   std::printf("| CHOLMOD solve | %.2f |\n", solve_ms);
   std::printf("symbolic analyses: %d\n", solver.analysis_count());
   inflation_benchmark(garment, body);

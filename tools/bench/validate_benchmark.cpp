@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include "core/common/stopwatch.hpp"
 #include "core/io/atomic_file.hpp"
@@ -62,7 +62,8 @@ void write_mesh(const std::string& path, const gr::TriangleMesh& mesh) {
       out << fmt::format("v {:.17g} {:.17g} {:.17g}\n", mesh.vertices(v, 0), mesh.vertices(v, 1),
                          mesh.vertices(v, 2));
     for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-      out << fmt::format("f {} {} {}\n", mesh.faces(f, 0) + 1, mesh.faces(f, 1) + 1, mesh.faces(f, 2) + 1);
+      out << fmt::format("f {} {} {}\n", mesh.faces(f, 0) + 1, mesh.faces(f, 1) + 1,
+                         mesh.faces(f, 2) + 1);
   });
 }
 
@@ -90,8 +91,10 @@ int main(int argc, char** argv) {
   app.add_option("--data", data, "Shared data folder")->capture_default_str();
   app.add_option("--work", work, "Folder for the generated OBJ files")->capture_default_str();
   app.add_option("--threads", threads, "Worker threads")->capture_default_str();
-  app.add_option("--repeats", repeats, "Runs per scene (the best is reported)")->capture_default_str();
-  app.add_option("--threshold", threshold, "Near-vertex threshold (normalized units)")->capture_default_str();
+  app.add_option("--repeats", repeats, "Runs per scene (the best is reported)")
+      ->capture_default_str();
+  app.add_option("--threshold", threshold, "Near-vertex threshold (normalized units)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(std::max(threads, 1)));
@@ -106,7 +109,8 @@ int main(int argc, char** argv) {
   // intersection, so FCL measures a small clearance instead of the exact test stopping
   // it at zero.
   constexpr double kGap = 0.01;
-  const double clear_y = avatar.vertices.col(1).maxCoeff() - garment.vertices.col(1).minCoeff() + kGap;
+  const double clear_y =
+      avatar.vertices.col(1).maxCoeff() - garment.vertices.col(1).minCoeff() + kGap;
   const gr::TriangleMesh clear = shifted(garment, gr::RowVector3d(0.0, clear_y, 0.0));
 
   std::filesystem::create_directories(work);
@@ -151,6 +155,7 @@ int main(int argc, char** argv) {
                 t.garment_avatar_intersections, t.garment_self_intersections,
                 t.smallest_avatar_clearance, t.near_vertices.value_or(0));
   }
-  std::printf("\npeak RSS %.1f MiB (getrusage, whole process including scene set-up)\n", peak_rss_mib());
+  std::printf("\npeak RSS %.1f MiB (getrusage, whole process including scene set-up)\n",
+              peak_rss_mib());
   return 0;
 }

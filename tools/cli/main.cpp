@@ -9,8 +9,9 @@
 #include "tools/cli/exit_codes.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"garment-retarget: refit a garment onto another avatar and certify that the "
-               "result intersects neither the avatar nor itself."};
+  CLI::App app{
+      "garment-retarget: refit a garment onto another avatar and certify that the "
+      "result intersects neither the avatar nor itself."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "garment-retarget " GR_VERSION);
   int exit_code = gr::kExitSuccess;

@@ -32,7 +32,8 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   add_scene_options(*cmd, options->inputs, options->out_dir);
   cmd->add_option("--no-fit", options->inputs.no_fit,
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting");
-  cmd->add_flag("--skirt", options->skirt, "Garment is a skirt: add a virtual bone between the legs");
+  cmd->add_flag("--skirt", options->skirt,
+                "Garment is a skirt: add a virtual bone between the legs");
   cmd->add_option("--shrink", *shrink_mode,
                   "How to shrink the avatar: levelset (erode along its signed distance) or "
                   "skeleton (collapse onto the source skeleton's bones); default: skeleton when "
@@ -50,7 +51,8 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--fit-dhat", o.fit_dhat,
                   std::string("Barrier support distance in the fit step (default: --dhat; "
-                              "accurate: half of it)") + units)
+                              "accurate: half of it)") +
+                      units)
       ->check(CLI::PositiveNumber);
   cmd->add_option("--eps-tol", o.eps_tol, "Newton stops when the gradient norm is below this")
       ->check(CLI::PositiveNumber);
@@ -70,7 +72,8 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
                   "Weight holding boundary loops at their input places, without skeletons "
                   "only (default 10; 0 switches it off)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--max-newton-iterations", o.max_newton_iterations, "Iteration cap per Newton solve")
+  cmd->add_option("--max-newton-iterations", o.max_newton_iterations,
+                  "Iteration cap per Newton solve")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-al-rounds", o.max_al_rounds, "Cap on augmented-Lagrangian rounds")
       ->check(CLI::PositiveNumber);

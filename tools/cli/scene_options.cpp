@@ -13,8 +13,9 @@ void add_scene_options(CLI::App& command, ScenePaths& inputs, std::string& out_d
                                     "Target skeleton OBJ, same joints and bones as the source");
   source->needs(target);
   target->needs(source);
-  command.add_option("--skin-weights", inputs.skin_weights,
-                     "Avatar skin weights: one row per joint, one column per avatar vertex")
+  command
+      .add_option("--skin-weights", inputs.skin_weights,
+                  "Avatar skin weights: one row per joint, one column per avatar vertex")
       ->needs(source);
 }
 

@@ -21,35 +21,44 @@ std::string check_non_negative(std::string& text) {
 void add_shape_check_options(CLI::App& command, ShapeThresholds& thresholds) {
   command
       .add_option_function<std::string>(
-          "--shape-check", [&thresholds](const std::string& value) { thresholds.enabled = value == "on"; },
+          "--shape-check",
+          [&thresholds](const std::string& value) { thresholds.enabled = value == "on"; },
           "on: a garment whose shape changed beyond the thresholds below ends the run with exit "
           "code 7 (default); off: the shape is measured and reported only")
       ->check(CLI::IsMember({"on", "off"}));
   const CLI::Validator non_negative(check_non_negative, "NUMBER >= 0 (or inf)");
   const char* off = "; inf switches it off";
-  command.add_option("--min-scale", thresholds.min_scale,
-                     std::string("Smallest median edge-length ratio (output / input)") + "; 0 switches it off")
+  command
+      .add_option(
+          "--min-scale", thresholds.min_scale,
+          std::string("Smallest median edge-length ratio (output / input)") + "; 0 switches it off")
       ->check(non_negative)
       ->capture_default_str();
-  command.add_option("--max-scale", thresholds.max_scale,
-                     std::string("Largest median edge-length ratio (output / input)") + off)
+  command
+      .add_option("--max-scale", thresholds.max_scale,
+                  std::string("Largest median edge-length ratio (output / input)") + off)
       ->check(non_negative)
       ->capture_default_str();
-  command.add_option("--max-mean-edge-change", thresholds.mean_edge_change,
-                     std::string("Largest scale-free mean edge-length change") + off)
+  command
+      .add_option("--max-mean-edge-change", thresholds.mean_edge_change,
+                  std::string("Largest scale-free mean edge-length change") + off)
       ->check(non_negative)
       ->capture_default_str();
-  command.add_option("--max-p95-edge-change", thresholds.p95_edge_change,
-                     std::string("Largest scale-free 95th-percentile edge-length change") + off)
+  command
+      .add_option("--max-p95-edge-change", thresholds.p95_edge_change,
+                  std::string("Largest scale-free 95th-percentile edge-length change") + off)
       ->check(non_negative)
       ->capture_default_str();
-  command.add_option("--max-area-change", thresholds.area_change,
-                     std::string("Largest relative change of total area, either way") + off)
+  command
+      .add_option("--max-area-change", thresholds.area_change,
+                  std::string("Largest relative change of total area, either way") + off)
       ->check(non_negative)
       ->capture_default_str();
-  command.add_option("--max-loop-displacement", thresholds.loop_displacement,
-                     std::string("Largest mean displacement of a boundary loop, in bounding-box "
-                                 "diagonals of the input garment") + off)
+  command
+      .add_option("--max-loop-displacement", thresholds.loop_displacement,
+                  std::string("Largest mean displacement of a boundary loop, in bounding-box "
+                              "diagonals of the input garment") +
+                      off)
       ->check(non_negative)
       ->capture_default_str();
 }

@@ -31,11 +31,13 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
   auto quiet = std::make_shared<bool>(false);
   auto mode = std::make_shared<std::string>(to_string(options->mode));
   CLI::App* cmd = root.add_subcommand(
-      "shrink", "Shrink the avatar until it is certified free of the garment; write it over "
-                "the garment (DIR/shrunk_avatar.obj) with DIR/report.json.");
+      "shrink",
+      "Shrink the avatar until it is certified free of the garment; write it over "
+      "the garment (DIR/shrunk_avatar.obj) with DIR/report.json.");
   add_scene_options(*cmd, options->inputs, options->out_dir);
-  cmd->add_option("--mode", *mode, "levelset: erode along the signed distance; "
-                                           "skeleton: collapse onto the source skeleton")
+  cmd->add_option("--mode", *mode,
+                  "levelset: erode along the signed distance; "
+                  "skeleton: collapse onto the source skeleton")
       ->check(CLI::IsMember({"levelset", "skeleton"}))
       ->capture_default_str();
   cmd->add_option("--voxel-size", options->voxel_size,

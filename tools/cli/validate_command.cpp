@@ -8,12 +8,12 @@
 #include "core/common/errors.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/result_page.hpp"
 #include "validate/certify/validation.hpp"
 #include "validate/measure/shape_change.hpp"
 #include "validate/report/file_digest.hpp"
 #include "validate/report/marks_file.hpp"
 #include "validate/report/validation_report.hpp"
-#include "tools/pipeline/result_page.hpp"
 
 namespace gr {
 
@@ -40,14 +40,15 @@ std::vector<ShapeChange> measure_against_sources(const Validation& validation,
   for (std::size_t g = 0; g < sources.size(); ++g) {
     const CheckedFile source = read_checked_file(sources[g]);
     const TriangleMesh& garment = validation.garments[g].mesh;
-    if (source.mesh.vertices.rows() != garment.vertices.rows() || source.mesh.faces != garment.faces)
-      throw InputError(sources[g], 0,
-                       fmt::format("not the source of {}: {} vertices and {} faces against {} and "
-                                   "{}, or other faces (the shape check needs the same vertex "
-                                   "order and faces)",
-                                   validation.garments[g].path, source.mesh.vertices.rows(),
-                                   source.mesh.faces.rows(), garment.vertices.rows(),
-                                   garment.faces.rows()));
+    if (source.mesh.vertices.rows() != garment.vertices.rows() ||
+        source.mesh.faces != garment.faces)
+      throw InputError(
+          sources[g], 0,
+          fmt::format("not the source of {}: {} vertices and {} faces against {} and "
+                      "{}, or other faces (the shape check needs the same vertex "
+                      "order and faces)",
+                      validation.garments[g].path, source.mesh.vertices.rows(),
+                      source.mesh.faces.rows(), garment.vertices.rows(), garment.faces.rows()));
     changes.push_back(measure_shape_change(source.mesh, garment.vertices));
   }
   return changes;
@@ -58,8 +59,7 @@ std::vector<ShapeChange> measure_against_sources(const Validation& validation,
 void add_validate_command(CLI::App& root, int& exit_code) {
   auto options = std::make_shared<ValidateCommandOptions>();
   CLI::App* cmd = root.add_subcommand(
-      "validate",
-      "Check existing garments exactly against an avatar, themselves and each other.");
+      "validate", "Check existing garments exactly against an avatar, themselves and each other.");
   cmd->add_option("--garment", options->garments,
                   "Garment OBJ; repeat for layers (each pair of garments is checked too)")
       ->required()
@@ -82,9 +82,10 @@ void add_validate_command(CLI::App& root, int& exit_code) {
                   "exit with 7 beyond the thresholds below")
       ->take_all();
   add_shape_check_options(*cmd, options->shape_thresholds);
-  cmd->footer("Exit codes: 0 certified (and, with --source, shape within its thresholds), 1\n"
-              "intersections found, 2 bad input, 7 certified but the shape changed beyond the\n"
-              "thresholds.");
+  cmd->footer(
+      "Exit codes: 0 certified (and, with --source, shape within its thresholds), 1\n"
+      "intersections found, 2 bad input, 7 certified but the shape changed beyond the\n"
+      "thresholds.");
   cmd->callback([options, &exit_code]() {
     if (!options->sources.empty() && options->sources.size() != options->garments.size())
       throw InputError(options->sources.front(), 0,
@@ -99,11 +100,12 @@ void add_validate_command(CLI::App& root, int& exit_code) {
     nlohmann::ordered_json report = validation_report(validation, options->max_listed);
     for (std::size_t g = 0; g < shapes.size(); ++g) {
       nlohmann::ordered_json shape = shape_report(shapes[g], options->shape_thresholds);
-      shape["source"] = {{"path", options->sources[g]}, {"sha256", sha256_of_file(options->sources[g])}};
+      shape["source"] = {{"path", options->sources[g]},
+                         {"sha256", sha256_of_file(options->sources[g])}};
       report["garments"][g]["shape"] = shape;
       for (const std::string& violation : shape_violations(shapes[g], options->shape_thresholds))
-        shape_warnings.push_back(fmt::format("garment {}: shape changed beyond its threshold: {}",
-                                             g, violation));
+        shape_warnings.push_back(
+            fmt::format("garment {}: shape changed beyond its threshold: {}", g, violation));
     }
     if (!options->report.empty()) write_json_file(options->report, report);
     if (!options->marks.empty()) write_marks_obj(options->marks, validation);
@@ -112,11 +114,11 @@ void add_validate_command(CLI::App& root, int& exit_code) {
       std::fprintf(stderr, "warning: %s\n", warning.c_str());
     std::string summary = validation_summary(validation);
     for (std::size_t g = 0; g < shapes.size(); ++g)
-      summary += fmt::format("; garment {} shape: scale {:.3g}, edge change mean {:.3g} p95 {:.3g}, "
-                             "area {:+.3g}, loops moved {:.3g}",
-                             g, shapes[g].scale, shapes[g].mean_edge_change,
-                             shapes[g].p95_edge_change, shapes[g].area_change,
-                             shapes[g].loop_displacement);
+      summary += fmt::format(
+          "; garment {} shape: scale {:.3g}, edge change mean {:.3g} p95 {:.3g}, "
+          "area {:+.3g}, loops moved {:.3g}",
+          g, shapes[g].scale, shapes[g].mean_edge_change, shapes[g].p95_edge_change,
+          shapes[g].area_change, shapes[g].loop_displacement);
     if (!shape_warnings.empty()) summary += "; SHAPE CHANGED beyond its thresholds";
     std::printf("%s\n", summary.c_str());
     exit_code = !validation.result.certified() ? kExitIntersections

@@ -10,8 +10,9 @@ namespace gr {
 /// box over the whole motion meets the garment's box grown by `margin` (normalized
 /// units). The garment moves mostly where the avatar pushes it (about the largest avatar
 /// displacement) or the fit pulls it (about the fit band), so a margin of the two plus
-/// dhat is usually enough; within_contact_scope tells when it was not. Faces further away (the head over a skirt, the feet under a jacket)
-/// stay out of the contact problem; the certificate still checks every face.
+/// dhat is usually enough; within_contact_scope tells when it was not. Faces further away (the head
+/// over a skirt, the feet under a jacket) stay out of the contact problem; the certificate still
+/// checks every face.
 /// @param shrunk, target #Va×3 avatar positions at t = 0 and t = 1; faces #Fa×3.
 /// @return row indices into faces, ascending.
 std::vector<int> reachable_avatar_faces(const Eigen::Ref<const MatrixX3d>& garment,

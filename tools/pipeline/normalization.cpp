@@ -43,9 +43,8 @@ Box bounding_box(const Eigen::Ref<const MatrixX3d>& points, const std::string& f
 /// The signed axis permutation (a rotation) closest to the best rotation taking the
 /// centred target joints onto the centred source joints.
 Eigen::Matrix3d axis_alignment(const MatrixX3d& source, const MatrixX3d& target) {
-  const Eigen::Matrix3d covariance =
-      (source.rowwise() - source.colwise().mean()).transpose() *
-      (target.rowwise() - target.colwise().mean());
+  const Eigen::Matrix3d covariance = (source.rowwise() - source.colwise().mean()).transpose() *
+                                     (target.rowwise() - target.colwise().mean());
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
   if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) d(2, 2) = -1;
@@ -89,9 +88,10 @@ Normalization normalize_scene(const Scene& scene) {
                                     scene.avatar_document.source_path, "target skeleton");
     n.garment_to_scene = {kNormalizedHeight / source.largest_side, Eigen::Matrix3d::Identity(),
                           source.center};
-    n.avatar_to_scene = {kNormalizedHeight / target.largest_side,
-                         axis_alignment(scene.source_skeleton->joints, scene.target_skeleton->joints),
-                         target.center};
+    n.avatar_to_scene = {
+        kNormalizedHeight / target.largest_side,
+        axis_alignment(scene.source_skeleton->joints, scene.target_skeleton->joints),
+        target.center};
   } else {
     const Box avatar =
         bounding_box(scene.avatar.mesh.vertices, scene.avatar_document.source_path, "avatar");
@@ -121,9 +121,8 @@ NormalizedScene make_normalized_scene(const Scene& scene, double lattice) {
     out.source_skeleton =
         Skeleton{to_lattice(garment_frame, scene.source_skeleton->joints, lattice),
                  scene.source_skeleton->bones};
-    out.target_skeleton =
-        Skeleton{to_lattice(avatar_frame, scene.target_skeleton->joints, lattice),
-                 scene.target_skeleton->bones};
+    out.target_skeleton = Skeleton{to_lattice(avatar_frame, scene.target_skeleton->joints, lattice),
+                                   scene.target_skeleton->bones};
   }
   return out;
 }

@@ -74,20 +74,23 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"units", "avatar file units"}}},
       {"position",
        {{"loop_offsets", r.loop_offsets},
-        {"meaning", "per boundary loop held along its bone: RMS offset from its place on the "
-                    "bone, in lengths of the bone"}}},
+        {"meaning",
+         "per boundary loop held along its bone: RMS offset from its place on the "
+         "bone, in lengths of the bone"}}},
       {"shape", shape_json(r)},
       {"modelled",
        {{"terms", r.terms},
         {"self_contact", r.self_contact},
-        {"self_contact_where", !r.self_contact           ? "nowhere"
-                               : r.self_contact_everywhere ? "everywhere"
-                                                           : "where the garment can fold onto itself"},
+        {"self_contact_where", !r.self_contact ? "nowhere"
+                               : r.self_contact_everywhere
+                                   ? "everywhere"
+                                   : "where the garment can fold onto itself"},
         {"fold_free_face_fraction",
          {{"inflate", r.inflate_fold_free},
           {"fit", r.fit_fold_free},
-          {"meaning", "mean share of garment faces per step in regions proven unable to fold "
-                      "onto themselves, whose self pairs were left out"}}},
+          {"meaning",
+           "mean share of garment faces per step in regions proven unable to fold "
+           "onto themselves, whose self pairs were left out"}}},
         {"garment_vertices", r.garment_vertices},
         {"garment_faces", r.garment_faces},
         {"fit_faces", r.fit_faces},

@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validate/measure/shape_change.hpp"
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
+#include "validate/measure/shape_change.hpp"
 
 namespace gr {
 
@@ -37,10 +37,12 @@ struct RetargetReport {
   std::string fit_status;
   std::map<std::string, double> final_energies;  ///< each term's value after the fit
 
-  double min_distance = 0.0;      ///< garment–avatar and garment–garment, normalized units (solver's view, pairs within dhat; else the certified garment–avatar clearance)
-  double scene_scale = 1.0;       ///< normalized units per avatar file unit
-  double lattice = 0.0;           ///< normalized coordinates are multiples of this (0: exact)
-  FitError fit_error;             ///< avatar file units
+  double min_distance =
+      0.0;  ///< garment–avatar and garment–garment, normalized units (solver's view, pairs within
+            ///< dhat; else the certified garment–avatar clearance)
+  double scene_scale = 1.0;  ///< normalized units per avatar file unit
+  double lattice = 0.0;      ///< normalized coordinates are multiples of this (0: exact)
+  FitError fit_error;        ///< avatar file units
   /// The written garment against the input garment, both in normalized units (so with
   /// skeletons the change of size the skeletons imply is already taken out).
   ShapeChange shape;

@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "validate/checks/mesh_intersections.hpp"
-#include "validate/measure/surface_distance.hpp"
 #include "tools/report_page/report_page.hpp"
 #include "tools/report_page/still_image.hpp"
+#include "validate/checks/mesh_intersections.hpp"
+#include "validate/measure/surface_distance.hpp"
 
 namespace gr {
 
@@ -48,7 +48,8 @@ std::vector<bool> no_fit_faces(const Scene& scene) {
   for (const auto& face : scene.garment_document.faces) {
     bool all = true;
     for (const ObjCorner& corner : face)
-      all = all && listed.count(scene.garment.obj_to_sim[static_cast<std::size_t>(corner.position)]) > 0;
+      all = all &&
+            listed.count(scene.garment.obj_to_sim[static_cast<std::size_t>(corner.position)]) > 0;
     no_fit.push_back(all);
   }
   return no_fit;
@@ -60,8 +61,9 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
                                   const Certificate& certificate, const RetargetReport& report) {
   const Validation& checked = certificate.validation;
   ReportPageData data;
-  data.title = fmt::format("{} on {}", fs::path(scene.garment_document.source_path).filename().string(),
-                           fs::path(scene.avatar_document.source_path).filename().string());
+  data.title =
+      fmt::format("{} on {}", fs::path(scene.garment_document.source_path).filename().string(),
+                  fs::path(scene.avatar_document.source_path).filename().string());
   data.subtitle = fmt::format("garment-retarget {}: {} on {}, quality {}", GR_VERSION,
                               scene.garment_document.source_path, scene.avatar_document.source_path,
                               to_string(report.quality));
@@ -71,9 +73,10 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
   // The input as the run placed it over the avatar: garment frame to scene to avatar frame.
   TriangleMesh input = mesh_as_written(scene.garment_document);
   for (Eigen::Index i = 0; i < input.vertices.rows(); ++i)
-    input.vertices.row(i) = frames.avatar_to_scene
-                                .invert(frames.garment_to_scene.apply(input.vertices.row(i).transpose()))
-                                .transpose();
+    input.vertices.row(i) =
+        frames.avatar_to_scene
+            .invert(frames.garment_to_scene.apply(input.vertices.row(i).transpose()))
+            .transpose();
   std::set<int> input_crossing;
   for (const FacePair& p : find_intersecting_face_pairs(input, data.avatar).pairs)
     input_crossing.insert(p.first);
@@ -83,7 +86,8 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
   garment.faces = output.faces;
   garment.no_fit = no_fit_faces(scene);
   garment.shapes.push_back(shape_of("input", input.vertices, data.avatar, input_crossing));
-  garment.shapes.push_back(shape_of("output", output.vertices, data.avatar, marked_faces(checked, 0)));
+  garment.shapes.push_back(
+      shape_of("output", output.vertices, data.avatar, marked_faces(checked, 0)));
   data.garments.push_back(std::move(garment));
   data.report = to_json(report);
   data.certificate = certificate.json;
@@ -102,10 +106,13 @@ void write_retarget_pages(const std::string& out_dir, bool stills, const Scene& 
 void write_validation_page(const std::string& path, const Validation& validation,
                            const nlohmann::ordered_json& report) {
   ReportPageData data;
-  data.title = "Validation of " + fs::path(validation.garments.front().path).filename().string() +
-               (validation.garments.size() > 1 ? fmt::format(" and {} more", validation.garments.size() - 1) : "") +
-               " on " + fs::path(validation.avatar.path).filename().string();
-  data.subtitle = fmt::format("garment-retarget {} validate, avatar {}", GR_VERSION, validation.avatar.path);
+  data.title =
+      "Validation of " + fs::path(validation.garments.front().path).filename().string() +
+      (validation.garments.size() > 1 ? fmt::format(" and {} more", validation.garments.size() - 1)
+                                      : "") +
+      " on " + fs::path(validation.avatar.path).filename().string();
+  data.subtitle =
+      fmt::format("garment-retarget {} validate, avatar {}", GR_VERSION, validation.avatar.path);
   data.units = "file units";
   data.avatar = validation.avatar.mesh;
   for (std::size_t i = 0; i < validation.garments.size(); ++i) {
@@ -113,8 +120,8 @@ void write_validation_page(const std::string& path, const Validation& validation
     PageGarment garment;
     garment.name = fs::path(file.path).filename().string();
     garment.faces = file.mesh.faces;
-    garment.shapes.push_back(
-        shape_of("as given", file.mesh.vertices, data.avatar, marked_faces(validation, static_cast<int>(i))));
+    garment.shapes.push_back(shape_of("as given", file.mesh.vertices, data.avatar,
+                                      marked_faces(validation, static_cast<int>(i))));
     data.garments.push_back(std::move(garment));
   }
   data.certificate = report;

@@ -17,14 +17,14 @@
 #include "core/io/atomic_file.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
-#include "validate/certify/certificate.hpp"
-#include "validate/checks/self_intersections.hpp"
-#include "validate/report/file_digest.hpp"
 #include "tools/pipeline/contact_scope.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/progress.hpp"
 #include "tools/pipeline/result_page.hpp"
+#include "validate/certify/certificate.hpp"
+#include "validate/checks/self_intersections.hpp"
+#include "validate/report/file_digest.hpp"
 
 namespace gr {
 
@@ -46,6 +46,9 @@ constexpr double kLoopOffsetWarning = 0.03;
 /// What every stage reads and writes: the options, the progress lines and the result whose
 /// report each stage fills in.
 struct Run {
+  explicit Run(const RetargetOptions& run_options)
+      : options(run_options), progress(run_options.quiet), out(run_options.out_dir) {}
+
   const RetargetOptions& options;
   Progress progress;
   RetargetResult result;
@@ -98,9 +101,9 @@ void write_garment(const std::string& path, const Inputs& in,
 void write_avatar(const std::string& path, const Inputs& in,
                   const Eigen::Ref<const MatrixX3d>& avatar) {
   const Normalization& n = in.normalized.normalization;
-  const MatrixX3d positions = export_positions(in.scene.avatar_document, in.scene.avatar,
-                                               n.avatar_to_scene.invert_rows(avatar),
-                                               [](const Vector3d& p) { return p; });
+  const MatrixX3d positions =
+      export_positions(in.scene.avatar_document, in.scene.avatar,
+                       n.avatar_to_scene.invert_rows(avatar), [](const Vector3d& p) { return p; });
   write_obj(path, in.scene.avatar_document, positions);
 }
 
@@ -121,7 +124,7 @@ Scene read_stage(Run& run) {
   Scene scene = load_scene(run.options.inputs);
   const bool has_skeletons = scene.source_skeleton.has_value();
   const ShrinkMode mode = run.options.shrink_mode.value_or(has_skeletons ? ShrinkMode::kSkeleton
-                                                                          : ShrinkMode::kLevelset);
+                                                                         : ShrinkMode::kLevelset);
   if (mode == ShrinkMode::kSkeleton && !has_skeletons)
     throw InputError(run.options.inputs.avatar, 0,
                      "skeleton shrink needs --source-skeleton and --target-skeleton");
@@ -176,7 +179,8 @@ SignedDistanceGrid distance_grid_stage(Run& run, const TriangleMesh& avatar) {
   SignedDistanceOptions grid_options;
   grid_options.exterior_band = kFitBand;
   grid_options.full_depth = run.report().shrink_mode == ShrinkMode::kLevelset;
-  SignedDistanceGrid grid = build_signed_distance(avatar, run.parameters().voxel_size, grid_options);
+  SignedDistanceGrid grid =
+      build_signed_distance(avatar, run.parameters().voxel_size, grid_options);
   run.progress.log("shrink", "signed distance: {} voxels of {:.4g} in {:.2f} s",
                    grid.active_voxel_count(), run.parameters().voxel_size, timer.seconds());
   return grid;
@@ -202,16 +206,16 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
   const double largest_avatar_motion =
       (normalized.avatar.vertices - shrunk.vertices).rowwise().norm().maxCoeff();
   solver.scope_margin = largest_avatar_motion + kFitBand + run.parameters().solver.dhat;
-  scene.avatar_faces_used =
-      reachable_avatar_faces(normalized.garment.vertices, shrunk.vertices,
-                             normalized.avatar.vertices, normalized.avatar.faces, solver.scope_margin);
+  scene.avatar_faces_used = reachable_avatar_faces(normalized.garment.vertices, shrunk.vertices,
+                                                   normalized.avatar.vertices,
+                                                   normalized.avatar.faces, solver.scope_margin);
   report.avatar_faces_modelled = static_cast<int>(scene.avatar_faces_used.size());
   // Every face in reach is every face: nothing a solve could leave, so no second solve.
   if (report.avatar_faces_modelled == report.avatar_faces_total) scene.avatar_faces_used.clear();
   if (normalized.source_skeleton)
-    scene.skeletons = SkeletonMotion{normalized.source_skeleton->joints,
-                                     normalized.target_skeleton->joints,
-                                     normalized.target_skeleton->bones, run.options.skirt};
+    scene.skeletons =
+        SkeletonMotion{normalized.source_skeleton->joints, normalized.target_skeleton->joints,
+                       normalized.target_skeleton->bones, run.options.skirt};
   scene.no_fit = in.scene.no_fit;
   scene.distance_field = &distance_field;
   const std::vector<bool> fits = fit_face_mask(
@@ -258,15 +262,15 @@ InflationResult inflate_stage(Run& run, const Inputs& in, SolverScene& solver) {
   const MatrixX3d& shrunk = solver.scene.shrunk_avatar;
   if (run.options.frames) {
     fs::create_directories(frames_dir);
-    write_garment((frames_dir / "round_00_garment.obj").string(), in, in.normalized.garment.vertices);
+    write_garment((frames_dir / "round_00_garment.obj").string(), in,
+                  in.normalized.garment.vertices);
     write_avatar((frames_dir / "round_00_avatar.obj").string(), in, shrunk);
   }
   const auto on_round = [&](const InflationRound& round) {
-    run.progress.log("inflate",
-                     "round {:2d}: t {:.9f}  eta {:.3g}  lambda1 {:.3g}  {} Newton steps{}{}",
-                     round.round, round.t, round.eta, round.lambda1, round.solve.iterations,
-                     round.reset ? "  (overshoot: reset)" : "",
-                     round.snapped ? "  snap to t = 1 valid" : "");
+    run.progress.log(
+        "inflate", "round {:2d}: t {:.9f}  eta {:.3g}  lambda1 {:.3g}  {} Newton steps{}{}",
+        round.round, round.t, round.eta, round.lambda1, round.solve.iterations,
+        round.reset ? "  (overshoot: reset)" : "", round.snapped ? "  snap to t = 1 valid" : "");
     if (!run.options.frames) return;
     const auto name = fmt::format("round_{:02d}", round.round);
     write_garment((frames_dir / (name + "_garment.obj")).string(), in, round.garment);
@@ -344,14 +348,17 @@ Certificate certify_stage(Run& run) {
   const RetargetOptions& options = run.options;
   const nlohmann::json extra = {
       {"inputs",
-       {{"garment", {{"path", options.inputs.garment}, {"sha256", sha256_of_file(options.inputs.garment)}}},
-        {"avatar", {{"path", options.inputs.avatar}, {"sha256", sha256_of_file(options.inputs.avatar)}}}}},
+       {{"garment",
+         {{"path", options.inputs.garment}, {"sha256", sha256_of_file(options.inputs.garment)}}},
+        {"avatar",
+         {{"path", options.inputs.avatar}, {"sha256", sha256_of_file(options.inputs.avatar)}}}}},
       {"output",
        {{"path", run.result.garment_path}, {"sha256", sha256_of_file(run.result.garment_path)}}},
       {"parameters", to_json(run.report())["parameters"]},
       {"shape", shape_report(run.report().shape, run.report().shape_thresholds)},
       {"quality", to_string(options.quality)}};
-  const Certificate certificate = certify_garment(run.result.garment_path, options.inputs.avatar, extra);
+  const Certificate certificate =
+      certify_garment(run.result.garment_path, options.inputs.avatar, extra);
   write_certificate((run.out / "certificate.json").string(), certificate);
   run.report().certified = certificate.certified();
   run.report().seconds.certify = timer.seconds();
@@ -378,13 +385,13 @@ ShapeThresholds applied_shape_thresholds(ShapeThresholds limits, bool has_skelet
 void shape_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
   RetargetReport& report = run.report();
   report.shape = measure_shape_change(in.normalized.garment, garment);
-  report.shape_thresholds = applied_shape_thresholds(
-      run.options.shape_thresholds, in.scene.source_skeleton.has_value());
-  run.progress.log("shape", "scale {:.3f}, scale-free edge change mean {:.3f} p95 {:.3f}, area "
+  report.shape_thresholds =
+      applied_shape_thresholds(run.options.shape_thresholds, in.scene.source_skeleton.has_value());
+  run.progress.log("shape",
+                   "scale {:.3f}, scale-free edge change mean {:.3f} p95 {:.3f}, area "
                    "{:+.3f}, boundary loops moved up to {:.3f} of the diagonal",
-                   report.shape.scale, report.shape.mean_edge_change,
-                   report.shape.p95_edge_change, report.shape.area_change,
-                   report.shape.loop_displacement);
+                   report.shape.scale, report.shape.mean_edge_change, report.shape.p95_edge_change,
+                   report.shape.area_change, report.shape.loop_displacement);
   for (const std::string& violation : shape_violations(report.shape, report.shape_thresholds))
     run.warn("shape changed beyond its threshold: " + violation +
              " (see --shape-check and the --max-* shape options)");
@@ -420,7 +427,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   if (options.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
                          static_cast<std::size_t>(options.threads));
-  Run run{options, Progress(options.quiet), {}, fs::path(options.out_dir)};
+  Run run(options);
   RetargetReport& report = run.report();
   report.quality = options.quality;
   report.parameters = parameters_for_quality(options.quality);
@@ -446,7 +453,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   try {
     shrunk = shrink_avatar(report.shrink_mode, in.normalized, in.scene.skin_weights, &grid);
   } catch (const NoValidShrinkError& e) {
-    const Vector3d where = in.normalized.normalization.garment_to_scene.invert(e.conflict().position);
+    const Vector3d where =
+        in.normalized.normalization.garment_to_scene.invert(e.conflict().position);
     report.seconds.shrink = shrink_timer.seconds();
     return finish(RetargetStatus::kNoValidShrink,
                   fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the garment's "
@@ -475,7 +483,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const Certificate certificate = certify_stage(run);
   std::string summary = measure_stage(run, in, fit.garment, certificate, total.seconds());
   run.progress.log("certify", "{}", summary);
-  RetargetStatus status = report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified;
+  RetargetStatus status =
+      report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified;
   if (report.certified && !shape_violations(report.shape, report.shape_thresholds).empty()) {
     status = RetargetStatus::kShapeChanged;
     summary += "; SHAPE CHANGED beyond its thresholds";

@@ -14,16 +14,17 @@ namespace gr {
 struct RetargetOptions {
   ScenePaths inputs;
   std::string out_dir;
-  bool skirt = false;          ///< add a virtual bone between the legs for L_pos
-  std::optional<ShrinkMode> shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
+  bool skirt = false;  ///< add a virtual bone between the legs for L_pos
+  std::optional<ShrinkMode>
+      shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
   Quality quality = Quality::kBalanced;
-  ParameterOverrides overrides;          ///< individual knobs over the preset
+  ParameterOverrides overrides;  ///< individual knobs over the preset
   /// Limits on the written garment's change of shape from the input (report.json `shape`);
   /// beyond them the run ends with RetargetStatus::kShapeChanged.
   ShapeThresholds shape_thresholds;
-  int threads = 0;             ///< 0: all cores
-  bool frames = false;         ///< write intermediate garment/avatar OBJs
-  bool png = false;            ///< also write front.png and side.png beside report.html
+  int threads = 0;      ///< 0: all cores
+  bool frames = false;  ///< write intermediate garment/avatar OBJs
+  bool png = false;     ///< also write front.png and side.png beside report.html
   bool quiet = false;
 };
 
@@ -40,9 +41,9 @@ enum class RetargetStatus {
 
 struct RetargetResult {
   RetargetStatus status = RetargetStatus::kSolverFailure;
-  std::string garment_path;      ///< the written garment, when one was written
+  std::string garment_path;  ///< the written garment, when one was written
   std::string report_path;
-  std::string message;           ///< one line for the user
+  std::string message;  ///< one line for the user
   RetargetReport report;
 };
 

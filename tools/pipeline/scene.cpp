@@ -74,8 +74,8 @@ Scene load_scene(const ScenePaths& paths) {
   }
 
   if (!paths.no_fit.empty()) {
-    const auto ids = read_vertex_list(paths.no_fit,
-                                      static_cast<int>(scene.garment_document.positions.rows()));
+    const auto ids =
+        read_vertex_list(paths.no_fit, static_cast<int>(scene.garment_document.positions.rows()));
     for (const int id : ids) {
       const int welded = scene.garment.obj_to_sim[static_cast<std::size_t>(id)];
       if (welded >= 0) scene.no_fit.push_back(welded);

@@ -16,8 +16,8 @@ struct ScenePaths {
   std::string avatar;
   std::string source_skeleton;  ///< with target_skeleton, or neither
   std::string target_skeleton;
-  std::string skin_weights;     ///< #joints × #avatar OBJ vertices; needs skeletons
-  std::string no_fit;           ///< 0-based garment OBJ vertex ids
+  std::string skin_weights;  ///< #joints × #avatar OBJ vertices; needs skeletons
+  std::string no_fit;        ///< 0-based garment OBJ vertex ids
 };
 
 /// A scene as read and checked, in the files' own units and frames.
@@ -28,8 +28,8 @@ struct Scene {
   SimulationMesh avatar;
   std::optional<Skeleton> source_skeleton;
   std::optional<Skeleton> target_skeleton;
-  Eigen::MatrixXd skin_weights;   ///< #joints × #avatar welded vertices; empty when not given
-  std::vector<int> no_fit;        ///< welded garment vertex ids
+  Eigen::MatrixXd skin_weights;  ///< #joints × #avatar welded vertices; empty when not given
+  std::vector<int> no_fit;       ///< welded garment vertex ids
   std::vector<std::string> warnings;
 };
 

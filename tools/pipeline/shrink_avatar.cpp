@@ -20,12 +20,12 @@ namespace gr {
 
 namespace {
 
-
 nlohmann::json point_json(const Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 void require_skeletons_for(ShrinkMode mode, bool has_skeletons, const std::string& avatar_path) {
   if (mode == ShrinkMode::kSkeleton && !has_skeletons)
-    throw InputError(avatar_path, 0, "skeleton shrink needs --source-skeleton and --target-skeleton");
+    throw InputError(avatar_path, 0,
+                     "skeleton shrink needs --source-skeleton and --target-skeleton");
 }
 
 void check_options(const ShrinkRunOptions& options, const Scene& scene) {
@@ -54,7 +54,8 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
                            const ProgressCallback& progress) {
   if (mode == ShrinkMode::kLevelset) {
-    if (!grid) throw std::invalid_argument("the level-set shrink needs the avatar's signed distance");
+    if (!grid)
+      throw std::invalid_argument("the level-set shrink needs the avatar's signed distance");
     LevelsetShrinkOptions options;
     options.progress = progress;
     return shrink_levelset(scene.avatar, scene.garment, *grid, options);
@@ -85,25 +86,29 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
                           [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
   };
   report = {{"mode", to_string(options.mode)},
-                           {"avatar", options.inputs.avatar},
-                           {"garment", options.inputs.garment},
-                           {"units", "depth and voxel_size in normalized scene units (body about 2 tall); "
-                                     "positions in the garment file's frame"},
-                           {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
+            {"avatar", options.inputs.avatar},
+            {"garment", options.inputs.garment},
+            {"units",
+             "depth and voxel_size in normalized scene units (body about 2 tall); "
+             "positions in the garment file's frame"},
+            {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
   try {
     if (options.mode == ShrinkMode::kLevelset) {
       const Stopwatch grid_stopwatch;
       SignedDistanceOptions grid_options;
       grid_options.progress = options.progress;
-      const SignedDistanceGrid grid = build_signed_distance(avatar, options.voxel_size, grid_options);
+      const SignedDistanceGrid grid =
+          build_signed_distance(avatar, options.voxel_size, grid_options);
       run.grid_seconds = grid_stopwatch.seconds();
-      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, options.progress);
+      run.shrink =
+          shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, options.progress);
       report["voxel_size"] = options.voxel_size;
       report["grid_seconds"] = run.grid_seconds;
       report["grid_active_voxels"] = grid.active_voxel_count();
       report["grid_bytes"] = grid.memory_bytes();
     } else {
-      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, nullptr, options.progress);
+      run.shrink =
+          shrink_avatar(options.mode, normalized, scene.skin_weights, nullptr, options.progress);
       report["pullback"] = run.shrink.pullback;
       report["collapsed_vertices"] = run.shrink.collapsed_vertices;
       report["collapse_rounds"] = run.shrink.collapse_rounds;
@@ -147,12 +152,14 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   report["shrink_seconds"] = run.shrink.seconds;
   write_report();
   run.message = options.mode == ShrinkMode::kLevelset
-                    ? fmt::format("shrunk avatar certified free of the garment at depth {:.4g} "
-                                  "({} vertices in the medial region)",
-                                  run.shrink.depth, run.shrink.medial_vertices)
-                    : fmt::format("shrunk avatar certified free of the garment on the source "
-                                  "skeleton (pullback {:.3g}, {} vertices pulled toward joints)",
-                                  run.shrink.pullback, run.shrink.collapsed_vertices);
+                    ? fmt::format(
+                          "shrunk avatar certified free of the garment at depth {:.4g} "
+                          "({} vertices in the medial region)",
+                          run.shrink.depth, run.shrink.medial_vertices)
+                    : fmt::format(
+                          "shrunk avatar certified free of the garment on the source "
+                          "skeleton (pullback {:.3g}, {} vertices pulled toward joints)",
+                          run.shrink.pullback, run.shrink.collapsed_vertices);
   return run;
 }
 

@@ -31,20 +31,20 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
 
 /// Everything `garment-retarget shrink` can be asked.
 struct ShrinkRunOptions {
-  ScenePaths inputs;             ///< garment and avatar; skeletons and weights for "skeleton"
+  ScenePaths inputs;  ///< garment and avatar; skeletons and weights for "skeleton"
   std::string out_dir;
   ShrinkMode mode = ShrinkMode::kLevelset;
-  double voxel_size = 0.01;      ///< normalized scene units (the body is about 2 tall)
-  ProgressCallback progress;     ///< optional
+  double voxel_size = 0.01;   ///< normalized scene units (the body is about 2 tall)
+  ProgressCallback progress;  ///< optional
 };
 
 struct ShrinkRunResult {
-  bool found = false;            ///< a certified shrunk avatar was written
-  std::string avatar_path;       ///< DIR/shrunk_avatar.obj when found
-  std::string report_path;       ///< DIR/report.json, written either way
-  std::string message;           ///< one line for the user
+  bool found = false;       ///< a certified shrunk avatar was written
+  std::string avatar_path;  ///< DIR/shrunk_avatar.obj when found
+  std::string report_path;  ///< DIR/report.json, written either way
+  std::string message;      ///< one line for the user
   ShrinkResult shrink;
-  double grid_seconds = 0.0;     ///< levelset: building the signed distance
+  double grid_seconds = 0.0;  ///< levelset: building the signed distance
 };
 
 /// Reads and normalizes the scene, shrinks the avatar (levelset or skeleton mode) until it

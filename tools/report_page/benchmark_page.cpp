@@ -16,9 +16,9 @@ std::string benchmark_page_html(const BenchmarkPageData& data) {
   if (!data.notes.empty()) body += "<p class=\"subtitle\">" + html_escape(data.notes) + "</p>";
   body += "</header>\n<main class=\"bench\">\n";
   if (!data.plot_png.empty())
-    body += "<figure><img alt=\"" + html_escape(data.plot_caption) + "\" src=\"data:image/png;base64," +
-            base64_encode(data.plot_png) + "\"><figcaption>" + html_escape(data.plot_caption) +
-            "</figcaption></figure>\n";
+    body += "<figure><img alt=\"" + html_escape(data.plot_caption) +
+            "\" src=\"data:image/png;base64," + base64_encode(data.plot_png) + "\"><figcaption>" +
+            html_escape(data.plot_caption) + "</figcaption></figure>\n";
   body += "<table class=\"results\">\n<tr>";
   for (const auto& c : data.columns) body += "<th>" + html_escape(c) + "</th>";
   body += "</tr>\n";
@@ -30,9 +30,11 @@ std::string benchmark_page_html(const BenchmarkPageData& data) {
                                   std::to_string(data.columns.size()) + " columns");
     body += "<tr>";
     for (std::size_t c = 0; c < row.size(); ++c) {
-      const bool link = c == data.link_column && !data.row_pages.empty() && !data.row_pages[r].empty();
+      const bool link =
+          c == data.link_column && !data.row_pages.empty() && !data.row_pages[r].empty();
       body += "<td>";
-      body += link ? "<a href=\"" + html_escape(data.row_pages[r]) + "\">" + html_escape(row[c]) + "</a>"
+      body += link ? "<a href=\"" + html_escape(data.row_pages[r]) + "\">" + html_escape(row[c]) +
+                         "</a>"
                    : html_escape(row[c]);
       body += "</td>";
     }

@@ -9,14 +9,14 @@ namespace gr {
 /// accuracy.
 struct BenchmarkPageData {
   std::string title;
-  std::string notes;                          ///< a paragraph under the title (plain text)
-  std::vector<std::string> columns;           ///< table header
-  std::vector<std::vector<std::string>> rows; ///< each as many cells as columns (plain text)
+  std::string notes;                           ///< a paragraph under the title (plain text)
+  std::vector<std::string> columns;            ///< table header
+  std::vector<std::vector<std::string>> rows;  ///< each as many cells as columns (plain text)
   /// Per row: the path of that run's report page relative to the benchmark page, or empty.
   /// The row's cell in link_column links to it.
   std::vector<std::string> row_pages;
   std::size_t link_column = 0;
-  std::string plot_png;                       ///< bytes of a PNG file; empty: no plot
+  std::string plot_png;  ///< bytes of a PNG file; empty: no plot
   std::string plot_caption;
 };
 

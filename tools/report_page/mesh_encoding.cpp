@@ -33,10 +33,9 @@ std::string base64_encode(std::string_view bytes) {
   std::size_t written = 0;
   for (std::size_t start = 0; start < bytes.size(); start += kBlock) {
     const std::size_t n = std::min(kBlock, bytes.size() - start);
-    written += static_cast<std::size_t>(
-        EVP_EncodeBlock(reinterpret_cast<unsigned char*>(out.data() + written),
-                        reinterpret_cast<const unsigned char*>(bytes.data() + start),
-                        static_cast<int>(n)));
+    written += static_cast<std::size_t>(EVP_EncodeBlock(
+        reinterpret_cast<unsigned char*>(out.data() + written),
+        reinterpret_cast<const unsigned char*>(bytes.data() + start), static_cast<int>(n)));
   }
   out.resize(written);
   return out;
@@ -81,8 +80,8 @@ nlohmann::json encode_unit_values(const std::vector<double>& values) {
   std::string bytes;
   bytes.reserve(2 * values.size());
   for (const double v : values)
-    append_little_endian(bytes, std::isfinite(v) ? quantize(v, 0.0, max)
-                                                 : static_cast<std::uint16_t>(kU16Max));
+    append_little_endian(
+        bytes, std::isfinite(v) ? quantize(v, 0.0, max) : static_cast<std::uint16_t>(kU16Max));
   return {{"max", max}, {"type", "u16"}, {"data", base64_encode(bytes)}};
 }
 

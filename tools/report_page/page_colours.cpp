@@ -58,8 +58,8 @@ std::vector<Rgb8> garment_corner_colours(const PageGarment& garment, const Garme
       if (marked[f])
         c = kMarkedColour;
       else
-        c = heat_colour(shape.distance[static_cast<std::size_t>(
-                            garment.faces(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(k)))] /
+        c = heat_colour(shape.distance[static_cast<std::size_t>(garment.faces(
+                            static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(k)))] /
                         heat_range);
     }
   return colours;

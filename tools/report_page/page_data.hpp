@@ -12,10 +12,11 @@ namespace gr {
 /// One shape of a garment on the page, e.g. the input as placed or the refitted output.
 /// Lengths and positions are in the page's frame (the avatar file's frame and units).
 struct GarmentShape {
-  std::string label;              ///< shown on the toggle ("input", "output")
-  MatrixX3d vertices;             ///< #V×3
-  std::vector<double> distance;   ///< #V: unsigned distance from each vertex to the avatar surface
-  std::vector<int> marked_faces;  ///< faces to highlight: intersecting, degenerate or otherwise flagged
+  std::string label;             ///< shown on the toggle ("input", "output")
+  MatrixX3d vertices;            ///< #V×3
+  std::vector<double> distance;  ///< #V: unsigned distance from each vertex to the avatar surface
+  std::vector<int>
+      marked_faces;  ///< faces to highlight: intersecting, degenerate or otherwise flagged
 };
 
 /// A garment on the page. Its shapes share the faces; with two shapes the page toggles
@@ -31,8 +32,8 @@ struct PageGarment {
 /// and the JSON documents whose numbers go beside the view.
 struct ReportPageData {
   std::string title;
-  std::string subtitle;               ///< one line under the title, e.g. the input files
-  TriangleMesh avatar;                ///< #Va×3 / #Fa×3, the page's frame
+  std::string subtitle;  ///< one line under the title, e.g. the input files
+  TriangleMesh avatar;   ///< #Va×3 / #Fa×3, the page's frame
   std::vector<PageGarment> garments;
   /// Distance at the cold end of the heat map (page units); farther is drawn in that colour.
   /// 0 selects default_heat_range(avatar).

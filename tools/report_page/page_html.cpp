@@ -23,7 +23,8 @@ std::string html_escape(std::string_view text) {
 
 std::string json_for_script(const nlohmann::ordered_json& json) {
   // Replacing invalid UTF-8 keeps dump() from throwing on odd bytes in file names.
-  const std::string text = json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  const std::string text =
+      json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   std::string out;
   out.reserve(text.size());
   for (const char c : text) {
@@ -41,8 +42,9 @@ std::string html_document(std::string_view title, std::string_view body) {
   page += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   // The page must never reach the network: the policy forbids every request but inline
   // code and embedded images, so a mistake shows as a console error instead.
-  page += "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
-          "script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:\">\n";
+  page +=
+      "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
+      "script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:\">\n";
   page += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   page += "<link rel=\"icon\" href=\"data:,\">\n<title>";
   page += html_escape(title);

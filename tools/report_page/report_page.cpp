@@ -96,17 +96,20 @@ std::string verdict_html(const ReportPageData& data) {
   const bool is_certificate = text_at(data.certificate, "/kind") == "certificate";
   std::string detail;
   if (const Json* counts = find(data.certificate, "/counts"))
-    detail = fmt::format("{} garment–avatar, {} self and {} garment–garment intersecting face pairs",
-                         counts->value("garment_avatar_intersections", 0),
-                         counts->value("garment_self_intersections", 0),
-                         counts->value("garment_garment_intersections", 0));
+    detail =
+        fmt::format("{} garment–avatar, {} self and {} garment–garment intersecting face pairs",
+                    counts->value("garment_avatar_intersections", 0),
+                    counts->value("garment_self_intersections", 0),
+                    counts->value("garment_garment_intersections", 0));
   const std::string headline =
-      *verdict ? (is_certificate ? "Certified: the written garment intersects neither the avatar nor itself"
-                                 : "No intersection found")
+      *verdict ? (is_certificate
+                      ? "Certified: the written garment intersects neither the avatar nor itself"
+                      : "No intersection found")
                : (is_certificate ? "NOT certified: the written garment has intersections"
                                  : "Intersections found");
-  return fmt::format("<div class=\"verdict {}\" id=\"gr-verdict\"><strong>{}</strong><br>{}</div>\n",
-                     *verdict ? "pass" : "fail", html_escape(headline), html_escape(detail));
+  return fmt::format(
+      "<div class=\"verdict {}\" id=\"gr-verdict\"><strong>{}</strong><br>{}</div>\n",
+      *verdict ? "pass" : "fail", html_escape(headline), html_escape(detail));
 }
 
 /// Smallest certified garment–avatar clearance over the certificate's garments.
@@ -129,10 +132,12 @@ std::vector<Section> retarget_sections(const ReportPageData& data) {
   fit.rows.push_back({"mean distance to body", format_length(number_at(r, "/fit_error/mean"), u)});
   fit.rows.push_back({"95th percentile", format_length(number_at(r, "/fit_error/p95"), u)});
   if (const auto faces = number_at(r, "/modelled/fit_faces"))
-    fit.rows.push_back({"fit faces", fmt::format("{:.0f} of {:.0f}", *faces,
-                                                 number_at(r, "/modelled/garment_faces").value_or(0))});
-  fit.rows.push_back({"fit solve", fmt::format("{} ({:.0f} Newton steps)", text_at(r, "/fit/status"),
-                                               number_at(r, "/fit/newton_iterations").value_or(0))});
+    fit.rows.push_back(
+        {"fit faces", fmt::format("{:.0f} of {:.0f}", *faces,
+                                  number_at(r, "/modelled/garment_faces").value_or(0))});
+  fit.rows.push_back(
+      {"fit solve", fmt::format("{} ({:.0f} Newton steps)", text_at(r, "/fit/status"),
+                                number_at(r, "/fit/newton_iterations").value_or(0))});
   sections.push_back(fit);
 
   Section clearance{"Clearance", {}, ""};
@@ -145,45 +150,55 @@ std::vector<Section> retarget_sections(const ReportPageData& data) {
   Section shape{"Shape change", {}, ""};
   if (const auto scale = number_at(r, "/shape/scale"))
     shape.rows.push_back({"scale (median edge-length ratio)", format_number(*scale)});
-  shape.rows.push_back({"scale-free mean edge-length change", format_percent(number_at(r, "/shape/mean_edge_change"))});
-  shape.rows.push_back({"scale-free 95th-percentile edge-length change", format_percent(number_at(r, "/shape/p95_edge_change"))});
+  shape.rows.push_back({"scale-free mean edge-length change",
+                        format_percent(number_at(r, "/shape/mean_edge_change"))});
+  shape.rows.push_back({"scale-free 95th-percentile edge-length change",
+                        format_percent(number_at(r, "/shape/p95_edge_change"))});
   shape.rows.push_back({"area change", format_percent(number_at(r, "/shape/area_change"))});
-  shape.rows.push_back({"largest boundary-loop displacement (of the diagonal)", format_percent(number_at(r, "/shape/loop_displacement"))});
+  shape.rows.push_back({"largest boundary-loop displacement (of the diagonal)",
+                        format_percent(number_at(r, "/shape/loop_displacement"))});
   if (const auto e = number_at(r, "/shape/surface_energy_per_area"))
     shape.rows.push_back({"surface energy per area", format_number(*e)});
-  if (const auto* loops = find(r, "/position/loop_offsets"); loops && loops->is_array() && !loops->empty()) {
+  if (const auto* loops = find(r, "/position/loop_offsets");
+      loops && loops->is_array() && !loops->empty()) {
     double worst = 0.0;
     for (const auto& v : *loops) worst = std::max(worst, v.get<double>());
-    shape.rows.push_back({"boundary loops off their place",
-                          fmt::format("{} loops, worst {:.2f}% of its bone", loops->size(), 100.0 * worst)});
+    shape.rows.push_back(
+        {"boundary loops off their place",
+         fmt::format("{} loops, worst {:.2f}% of its bone", loops->size(), 100.0 * worst)});
   }
   sections.push_back(shape);
 
   Section times{"Stage times", {}, ""};
-  for (const char* stage : {"read", "normalize", "shrink", "inflate", "fit", "write", "certify", "total"})
+  for (const char* stage :
+       {"read", "normalize", "shrink", "inflate", "fit", "write", "certify", "total"})
     if (const auto s = number_at(r, (std::string("/seconds/") + stage).c_str()))
       times.rows.push_back({stage, fmt::format("{:.2f} s", *s)});
   sections.push_back(times);
 
   Section run{"Run", {}, ""};
   run.rows.push_back({"quality", text_at(r, "/quality")});
-  run.rows.push_back({"shrink", fmt::format("{} (depth {})", text_at(r, "/shrink/mode"),
-                                            format_number(number_at(r, "/shrink/depth").value_or(0)))});
-  run.rows.push_back({"inflation", fmt::format("{} ({:.0f} rounds, {:.0f} resets, {:.0f} Newton steps)",
-                                               text_at(r, "/inflate/status"),
-                                               number_at(r, "/inflate/al_rounds").value_or(0),
-                                               number_at(r, "/inflate/resets").value_or(0),
-                                               number_at(r, "/inflate/newton_iterations").value_or(0))});
+  run.rows.push_back(
+      {"shrink", fmt::format("{} (depth {})", text_at(r, "/shrink/mode"),
+                             format_number(number_at(r, "/shrink/depth").value_or(0)))});
+  run.rows.push_back(
+      {"inflation",
+       fmt::format("{} ({:.0f} rounds, {:.0f} resets, {:.0f} Newton steps)",
+                   text_at(r, "/inflate/status"), number_at(r, "/inflate/al_rounds").value_or(0),
+                   number_at(r, "/inflate/resets").value_or(0),
+                   number_at(r, "/inflate/newton_iterations").value_or(0))});
   if (const auto* terms = find(r, "/modelled/terms"); terms && terms->is_array()) {
     std::string list;
     for (const auto& t : *terms) list += (list.empty() ? "" : ", ") + t.get<std::string>();
     run.rows.push_back({"terms", list});
   }
-  run.rows.push_back({"avatar faces modelled",
-                      fmt::format("{:.0f} of {:.0f}", number_at(r, "/modelled/avatar_faces_modelled").value_or(0),
-                                  number_at(r, "/modelled/avatar_faces_total").value_or(0))});
+  run.rows.push_back(
+      {"avatar faces modelled",
+       fmt::format("{:.0f} of {:.0f}", number_at(r, "/modelled/avatar_faces_modelled").value_or(0),
+                   number_at(r, "/modelled/avatar_faces_total").value_or(0))});
   run.rows.push_back({"self-contact", text_at(r, "/modelled/self_contact_where")});
-  if (const auto m = number_at(r, "/peak_memory_mb")) run.rows.push_back({"peak memory", fmt::format("{:.0f} MB", *m)});
+  if (const auto m = number_at(r, "/peak_memory_mb"))
+    run.rows.push_back({"peak memory", fmt::format("{:.0f} MB", *m)});
   sections.push_back(run);
   return sections;
 }
@@ -196,13 +211,18 @@ std::vector<Section> validation_sections(const ReportPageData& data) {
   for (const Json& g : *garments) {
     Section s{"Garment " + text_at(g, "/path"), {}, ""};
     s.rows.push_back({"intersecting the avatar",
-                      fmt::format("{:.0f} face pairs", number_at(g, "/avatar_intersections/count").value_or(0))});
-    s.rows.push_back({"intersecting itself",
-                      fmt::format("{:.0f} face pairs", number_at(g, "/self_intersections/count").value_or(0))});
-    s.rows.push_back({"degenerate faces", fmt::format("{:.0f}", number_at(g, "/degenerate_faces/count").value_or(0))});
-    s.rows.push_back({"clearance to the avatar", format_length(number_at(g, "/avatar_clearance/distance"), data.units)});
+                      fmt::format("{:.0f} face pairs",
+                                  number_at(g, "/avatar_intersections/count").value_or(0))});
+    s.rows.push_back(
+        {"intersecting itself",
+         fmt::format("{:.0f} face pairs", number_at(g, "/self_intersections/count").value_or(0))});
+    s.rows.push_back({"degenerate faces",
+                      fmt::format("{:.0f}", number_at(g, "/degenerate_faces/count").value_or(0))});
+    s.rows.push_back({"clearance to the avatar",
+                      format_length(number_at(g, "/avatar_clearance/distance"), data.units)});
     if (const auto near = number_at(g, "/near_vertices/count"))
-      s.rows.push_back({"vertices nearer than " + format_number(number_at(g, "/near_vertices/threshold").value_or(0)),
+      s.rows.push_back({"vertices nearer than " +
+                            format_number(number_at(g, "/near_vertices/threshold").value_or(0)),
                         format_number(*near)});
     sections.push_back(s);
   }
@@ -214,7 +234,8 @@ Section warnings_section(const ReportPageData& data) {
   std::vector<std::string> items;
   if (const auto* w = find(data.report, "/warnings"); w && w->is_array())
     for (const auto& text : *w) items.push_back(text.get<std::string>());
-  if (const Json* messages = find(data.certificate, "/issues/messages"); messages && messages->is_array())
+  if (const Json* messages = find(data.certificate, "/issues/messages");
+      messages && messages->is_array())
     for (const Json& m : *messages) {
       const std::string severity = m.value("severity", "");
       if (severity == "error" || severity == "warning")
@@ -229,7 +250,8 @@ Section warnings_section(const ReportPageData& data) {
   for (std::size_t i = 0; i < std::min(items.size(), kListedWarnings); ++i)
     s.html += "<li>" + html_escape(items[i]) + "</li>\n";
   if (items.size() > kListedWarnings)
-    s.html += fmt::format("<li>and {} more in the documents below</li>\n", items.size() - kListedWarnings);
+    s.html += fmt::format("<li>and {} more in the documents below</li>\n",
+                          items.size() - kListedWarnings);
   s.html += "</ul>\n";
   return s;
 }
@@ -243,7 +265,8 @@ std::string documents_html(const ReportPageData& data) {
   };
   if (!data.report.is_null()) add("report.json", data.report.dump(2));
   if (!data.certificate.is_null())
-    add(text_at(data.certificate, "/kind") == "certificate" ? "certificate.json" : "validation report",
+    add(text_at(data.certificate, "/kind") == "certificate" ? "certificate.json"
+                                                            : "validation report",
         data.certificate.dump(2));
   return out;
 }
@@ -266,19 +289,27 @@ bool has_shape_toggle(const ReportPageData& data) {
 std::string legend_html(const ReportPageData& data, double heat_range) {
   std::string gradient;
   for (const HeatStop& s : heat_stops())
-    gradient += fmt::format(", rgb({},{},{}) {:.0f}%", s.colour.r, s.colour.g, s.colour.b, 100.0 * s.position);
+    gradient += fmt::format(", rgb({},{},{}) {:.0f}%", s.colour.r, s.colour.g, s.colour.b,
+                            100.0 * s.position);
   auto swatch = [](Rgb8 c, const char* label, const char* id) {
-    return fmt::format("<span class=\"swatch\" id=\"{}\"><i style=\"background: rgb({},{},{})\"></i>{}</span>",
-                       id, c.r, c.g, c.b, label);
+    return fmt::format(
+        "<span class=\"swatch\" id=\"{}\"><i style=\"background: rgb({},{},{})\"></i>{}</span>", id,
+        c.r, c.g, c.b, label);
   };
-  std::string out = "<div class=\"legend\" id=\"gr-legend\">\n<div class=\"legend-title\">distance to the body</div>\n";
-  out += fmt::format("<div class=\"gradient\" style=\"background: linear-gradient(to right{})\"></div>\n", gradient);
-  out += fmt::format("<div class=\"ticks\"><span>0</span><span>{}</span><span>≥ {} {}</span></div>\n",
-                     format_number(0.5 * heat_range), format_number(heat_range), html_escape(data.units));
+  std::string out =
+      "<div class=\"legend\" id=\"gr-legend\">\n<div class=\"legend-title\">distance to the "
+      "body</div>\n";
+  out += fmt::format(
+      "<div class=\"gradient\" style=\"background: linear-gradient(to right{})\"></div>\n",
+      gradient);
+  out += fmt::format(
+      "<div class=\"ticks\"><span>0</span><span>{}</span><span>≥ {} {}</span></div>\n",
+      format_number(0.5 * heat_range), format_number(heat_range), html_escape(data.units));
   out += "<div class=\"swatches\">";
   if (has_no_fit_faces(data))
     out += fmt::format(
-        "<span class=\"swatch\" id=\"gr-swatch-nofit\"><i style=\"background: repeating-linear-gradient("
+        "<span class=\"swatch\" id=\"gr-swatch-nofit\"><i style=\"background: "
+        "repeating-linear-gradient("
         "135deg, rgb({0},{1},{2}) 0 2px, #fff 2px 5px)\"></i>no-fit (striped: hangs free)</span>",
         kNoFitColour.r, kNoFitColour.g, kNoFitColour.b);
   out += swatch(kMarkedColour, "intersecting or marked", "gr-swatch-marked");
@@ -295,15 +326,18 @@ std::string toolbar_html(const ReportPageData& data) {
   if (toggled) {
     out += "<span class=\"shapes\" role=\"group\" aria-label=\"garment shape\">";
     for (std::size_t i = 0; i < toggled->shapes.size(); ++i)
-      out += fmt::format("<button type=\"button\" class=\"shape-button\" data-shape=\"{}\" id=\"gr-shape-{}\">{}</button>",
-                         i, i, html_escape(toggled->shapes[i].label));
+      out += fmt::format(
+          "<button type=\"button\" class=\"shape-button\" data-shape=\"{}\" "
+          "id=\"gr-shape-{}\">{}</button>",
+          i, i, html_escape(toggled->shapes[i].label));
     out += "</span>\n";
   }
   if (has_no_fit_faces(data))
     out += "<label><input type=\"checkbox\" id=\"gr-nofit\" checked> no-fit region</label>\n";
-  out += "<label><input type=\"checkbox\" id=\"gr-body\" checked> avatar</label>\n"
-         "<label><input type=\"checkbox\" id=\"gr-seethrough\"> see-through avatar</label>\n"
-         "<button type=\"button\" id=\"gr-reset\">front view</button>\n</div>\n";
+  out +=
+      "<label><input type=\"checkbox\" id=\"gr-body\" checked> avatar</label>\n"
+      "<label><input type=\"checkbox\" id=\"gr-seethrough\"> see-through avatar</label>\n"
+      "<button type=\"button\" id=\"gr-reset\">front view</button>\n</div>\n";
   return out;
 }
 
@@ -355,8 +389,9 @@ nlohmann::ordered_json report_page_scene(const ReportPageData& data) {
               {"heat_range", heat_range},
               {"colours", page_colours_json()},
               {"view", to_json(guess_view_frame(data.avatar.vertices))},
-              {"avatar", {{"positions", encode_positions(data.avatar.vertices)},
-                          {"faces", encode_indices(data.avatar.faces)}}},
+              {"avatar",
+               {{"positions", encode_positions(data.avatar.vertices)},
+                {"faces", encode_indices(data.avatar.faces)}}},
               {"garments", garments}};
 }
 
@@ -365,10 +400,13 @@ std::string report_page_html(const ReportPageData& data) {
   const double heat_range = scene["heat_range"].get<double>();
 
   std::string body = "<header><h1>" + html_escape(data.title) + "</h1>";
-  if (!data.subtitle.empty()) body += "<p class=\"subtitle\">" + html_escape(data.subtitle) + "</p>";
+  if (!data.subtitle.empty())
+    body += "<p class=\"subtitle\">" + html_escape(data.subtitle) + "</p>";
   body += "</header>\n<main class=\"report\">\n<section class=\"view\">\n";
   body += toolbar_html(data);
-  body += "<div class=\"canvas-box\" id=\"gr-view\"><noscript>The 3D view needs JavaScript.</noscript></div>\n";
+  body +=
+      "<div class=\"canvas-box\" id=\"gr-view\"><noscript>The 3D view needs "
+      "JavaScript.</noscript></div>\n";
   body += legend_html(data, heat_range);
   body += std::string("<p class=\"hint\">Drag to orbit, scroll to zoom, right-drag to pan") +
           (has_shape_toggle(data) ? "; T toggles the garment's shape" : "") + ".</p>\n";
@@ -381,12 +419,16 @@ std::string report_page_html(const ReportPageData& data) {
   body += documents_html(data);
   body += "</aside>\n</main>\n<footer>\n";
   body += fmt::format(
-      "<details class=\"licence\"><summary>The 3D view uses three.js {} (MIT licence)</summary><pre>{}</pre></details>\n",
+      "<details class=\"licence\"><summary>The 3D view uses three.js {} (MIT "
+      "licence)</summary><pre>{}</pre></details>\n",
       html_escape(three_version()), html_escape(three_license()));
   body += "</footer>\n";
-  body += "<script type=\"application/json\" id=\"gr-scene\">" + json_for_script(scene) + "</script>\n";
-  body += fmt::format("<script>\n/* three.js {} (MIT licence, text in the footer), bundled with the report's viewer */\n",
-                      three_version());
+  body +=
+      "<script type=\"application/json\" id=\"gr-scene\">" + json_for_script(scene) + "</script>\n";
+  body += fmt::format(
+      "<script>\n/* three.js {} (MIT licence, text in the footer), bundled with the report's "
+      "viewer */\n",
+      three_version());
   body += viewer_script();
   body += "\n</script>\n";
   return html_document(data.title, body);

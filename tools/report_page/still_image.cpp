@@ -50,10 +50,14 @@ class Raster {
                 const std::array<double, 3>& light, bool striped) {
     const double area = edge(p[0], p[1], p[2]);
     if (!(std::abs(area) > 0.0)) return;
-    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({p[0].x(), p[1].x(), p[2].x()}))));
-    const int x1 = std::min(width_ - 1, static_cast<int>(std::ceil(std::max({p[0].x(), p[1].x(), p[2].x()}))));
-    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({p[0].y(), p[1].y(), p[2].y()}))));
-    const int y1 = std::min(height_ - 1, static_cast<int>(std::ceil(std::max({p[0].y(), p[1].y(), p[2].y()}))));
+    const int x0 =
+        std::max(0, static_cast<int>(std::floor(std::min({p[0].x(), p[1].x(), p[2].x()}))));
+    const int x1 =
+        std::min(width_ - 1, static_cast<int>(std::ceil(std::max({p[0].x(), p[1].x(), p[2].x()}))));
+    const int y0 =
+        std::max(0, static_cast<int>(std::floor(std::min({p[0].y(), p[1].y(), p[2].y()}))));
+    const int y1 = std::min(height_ - 1,
+                            static_cast<int>(std::ceil(std::max({p[0].y(), p[1].y(), p[2].y()}))));
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
         const Vector3d s(x + 0.5, y + 0.5, 0.0);
@@ -67,7 +71,8 @@ class Raster {
         if (z <= depth_[i]) continue;
         depth_[i] = z;
         if (striped && on_no_fit_stripe(s.x() / factor_, s.y() / factor_))
-          colour_[i] = ((w0 * light[0] + w1 * light[1] + w2 * light[2]) * as_vector(kNoFitColour)).cast<float>();
+          colour_[i] = ((w0 * light[0] + w1 * light[1] + w2 * light[2]) * as_vector(kNoFitColour))
+                           .cast<float>();
         else
           colour_[i] = ((w0 * light[0]) * colour[0] + (w1 * light[1]) * colour[1] +
                         (w2 * light[2]) * colour[2])
@@ -85,13 +90,15 @@ class Raster {
         Vector3d sum = Vector3d::Zero();
         for (int dy = 0; dy < factor; ++dy)
           for (int dx = 0; dx < factor; ++dx)
-            sum += colour_[static_cast<std::size_t>(y * factor + dy) * static_cast<std::size_t>(width_) +
+            sum += colour_[static_cast<std::size_t>(y * factor + dy) *
+                               static_cast<std::size_t>(width_) +
                            static_cast<std::size_t>(x * factor + dx)]
                        .cast<double>();
         const Vector3d c = (sum / samples).cwiseMax(0.0).cwiseMin(255.0);
-        image.set(x, y, {static_cast<std::uint8_t>(std::lround(c.x())),
-                         static_cast<std::uint8_t>(std::lround(c.y())),
-                         static_cast<std::uint8_t>(std::lround(c.z()))});
+        image.set(x, y,
+                  {static_cast<std::uint8_t>(std::lround(c.x())),
+                   static_cast<std::uint8_t>(std::lround(c.y())),
+                   static_cast<std::uint8_t>(std::lround(c.z()))});
       }
     return image;
   }
@@ -109,7 +116,8 @@ class Raster {
 
 /// Draws a mesh whose corner colours are given face-major (3 per face); faces flagged in
 /// `striped` (#F, or empty for none) get the no-fit stripes.
-void draw_mesh(Raster& raster, const StillCamera& camera, const Eigen::Ref<const MatrixX3d>& vertices,
+void draw_mesh(Raster& raster, const StillCamera& camera,
+               const Eigen::Ref<const MatrixX3d>& vertices,
                const Eigen::Ref<const MatrixX3i>& faces, const std::vector<Rgb8>& corner_colours,
                const std::vector<bool>& striped) {
   const MatrixX3d normals = vertex_normals(vertices, faces);
@@ -121,8 +129,8 @@ void draw_mesh(Raster& raster, const StillCamera& camera, const Eigen::Ref<const
       p[k] = camera.project(vertices.row(v).transpose());
       colour[k] = as_vector(corner_colours[static_cast<std::size_t>(3 * f + k)]);
       // Two-sided: garments are open surfaces seen from both sides.
-      light[k] = kAmbient + (1.0 - kAmbient) *
-                                std::abs(normals.row(v).dot(camera.toward_viewer.transpose()));
+      light[k] = kAmbient +
+                 (1.0 - kAmbient) * std::abs(normals.row(v).dot(camera.toward_viewer.transpose()));
     }
     raster.triangle(p, colour, light, !striped.empty() && striped[static_cast<std::size_t>(f)]);
   }
@@ -148,7 +156,8 @@ StillCamera still_camera(const ReportPageData& data, StillView view, int width, 
   Vector2d hi = -lo;
   auto include = [&](const Eigen::Ref<const MatrixX3d>& points) {
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
-      const Vector2d q(points.row(i).dot(camera.right.transpose()), points.row(i).dot(camera.up.transpose()));
+      const Vector2d q(points.row(i).dot(camera.right.transpose()),
+                       points.row(i).dot(camera.up.transpose()));
       lo = lo.cwiseMin(q);
       hi = hi.cwiseMax(q);
     }
@@ -166,9 +175,11 @@ StillCamera still_camera(const ReportPageData& data, StillView view, int width, 
 RgbImage render_still(const ReportPageData& data, StillView view, const StillOptions& options) {
   const int factor = options.supersample;
   Raster raster(options.width * factor, options.height * factor, factor);
-  const StillCamera camera = still_camera(data, view, options.width * factor, options.height * factor);
-  draw_mesh(raster, camera, data.avatar.vertices, data.avatar.faces,
-            std::vector<Rgb8>(3 * static_cast<std::size_t>(data.avatar.faces.rows()), kAvatarColour), {});
+  const StillCamera camera =
+      still_camera(data, view, options.width * factor, options.height * factor);
+  draw_mesh(
+      raster, camera, data.avatar.vertices, data.avatar.faces,
+      std::vector<Rgb8>(3 * static_cast<std::size_t>(data.avatar.faces.rows()), kAvatarColour), {});
   const double heat_range = page_heat_range(data);
   for (const PageGarment& garment : data.garments) {
     if (garment.shapes.empty()) continue;

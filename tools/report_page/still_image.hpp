@@ -22,8 +22,8 @@ struct StillOptions {
 /// The orthographic camera of a still: maps page-frame points to pixels, fitted so the
 /// avatar and every garment's last shape fill the image with a margin.
 struct StillCamera {
-  Vector3d right, up, toward_viewer;  ///< unit axes of the image, right-handed
-  double scale = 1.0;                 ///< pixels per page unit
+  Vector3d right, up, toward_viewer;   ///< unit axes of the image, right-handed
+  double scale = 1.0;                  ///< pixels per page unit
   Vector2d centre = Vector2d::Zero();  ///< image-plane coordinates of the image centre
   int width = 0, height = 0;
 

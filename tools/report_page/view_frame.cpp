@@ -10,8 +10,7 @@ ViewFrame guess_view_frame(const Eigen::Ref<const MatrixX3d>& points) {
   const Vector3d extent = (points.colwise().maxCoeff() - points.colwise().minCoeff()).transpose();
   std::array<int, 3> axes{0, 1, 2};
   // Largest extent first; stable, so ties keep x, y, z.
-  std::stable_sort(axes.begin(), axes.end(),
-                   [&](int a, int b) { return extent[a] > extent[b]; });
+  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return extent[a] > extent[b]; });
   ViewFrame frame;
   frame.up = Vector3d::Unit(axes[0]);
   frame.side = Vector3d::Unit(axes[1]);

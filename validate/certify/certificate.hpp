@@ -11,7 +11,8 @@ namespace gr {
 /// The certification of a written garment: every check and its JSON.
 struct Certificate {
   Validation validation;
-  nlohmann::ordered_json json;  ///< the validation report with kind "certificate" and the caller's `extra`
+  nlohmann::ordered_json
+      json;  ///< the validation report with kind "certificate" and the caller's `extra`
   bool certified() const { return validation.result.certified(); }
 };
 

@@ -42,7 +42,8 @@ GarmentFindings check_garment(const TriangleMesh& garment, const TriangleMesh& a
         g.degenerate_faces = find_degenerate_faces(garment);
       },
       [&] {
-        if (options.threshold) g.near_vertices = vertices_closer_than(garment, avatar, *options.threshold);
+        if (options.threshold)
+          g.near_vertices = vertices_closer_than(garment, avatar, *options.threshold);
       });
   return g;
 }
@@ -58,7 +59,8 @@ ValidationTotals ValidationResult::totals() const {
     t.degenerate_faces += g.degenerate_faces.size();
     t.untested_degenerate_neighbours += g.self_intersections.untested_degenerate_neighbours;
     if (g.near_vertices) t.near_vertices = t.near_vertices.value_or(0) + g.near_vertices->size();
-    t.smallest_avatar_clearance = std::min(t.smallest_avatar_clearance, g.avatar_clearance.distance);
+    t.smallest_avatar_clearance =
+        std::min(t.smallest_avatar_clearance, g.avatar_clearance.distance);
   }
   for (const GarmentPairFindings& p : garment_pairs)
     t.garment_garment_intersections += p.intersections.count;
@@ -95,7 +97,8 @@ TriangleMesh mesh_as_written(const ObjDocument& document) {
   mesh.faces.resize(static_cast<Eigen::Index>(document.faces.size()), 3);
   for (std::size_t f = 0; f < document.faces.size(); ++f)
     for (int c = 0; c < 3; ++c)
-      mesh.faces(static_cast<Eigen::Index>(f), c) = document.faces[f][static_cast<std::size_t>(c)].position;
+      mesh.faces(static_cast<Eigen::Index>(f), c) =
+          document.faces[f][static_cast<std::size_t>(c)].position;
   return mesh;
 }
 

@@ -47,7 +47,7 @@ struct ValidationTotals {
   std::size_t degenerate_faces = 0;
   std::size_t untested_degenerate_neighbours = 0;
   std::optional<std::size_t> near_vertices;  ///< set when a threshold was given
-  double smallest_avatar_clearance = 0.0;     ///< over all garments, input units
+  double smallest_avatar_clearance = 0.0;    ///< over all garments, input units
 };
 
 /// The result of every check.

@@ -30,7 +30,8 @@ std::vector<Box> make_boxes(const TriangleMesh& mesh) {
 
 }  // namespace
 
-std::vector<FacePair> overlapping_face_boxes(const TriangleMesh& first, const TriangleMesh& second) {
+std::vector<FacePair> overlapping_face_boxes(const TriangleMesh& first,
+                                             const TriangleMesh& second) {
   std::vector<Box> first_boxes = make_boxes(first);
   std::vector<Box> second_boxes = make_boxes(second);
   std::vector<FacePair> overlapping;

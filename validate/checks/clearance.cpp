@@ -76,7 +76,9 @@ std::vector<int> vertices_closer_than(const TriangleMesh& points_mesh, const Tri
   const std::vector<int> identity = position_identity(points_mesh.vertices);
   std::vector<char> used(identity.size(), 0);
   for (Eigen::Index f = 0; f < points_mesh.faces.rows(); ++f)
-    for (int c = 0; c < 3; ++c) used[static_cast<std::size_t>(identity[static_cast<std::size_t>(points_mesh.faces(f, c))])] = 1;
+    for (int c = 0; c < 3; ++c)
+      used[static_cast<std::size_t>(identity[static_cast<std::size_t>(points_mesh.faces(f, c))])] =
+          1;
   std::vector<char> near(identity.size(), 0);
   const double threshold_sq = threshold * threshold;
   tbb::parallel_for(std::size_t(0), identity.size(), [&](std::size_t v) {

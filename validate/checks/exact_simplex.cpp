@@ -43,8 +43,7 @@ bool simplices_intersect(const Simplex& x, const Simplex& y) {
     case Simplex::kSegment:
       if (y.kind == Simplex::kSegment) return CGAL::do_intersect(x.segment, y.segment);
       return x.segment.has_on(y.point);
-    case Simplex::kPoint:
-      return x.point == y.point;
+    case Simplex::kPoint: return x.point == y.point;
   }
   return false;
 }

@@ -70,7 +70,9 @@ SelfIntersections find_self_intersecting_face_pairs(const TriangleMesh& mesh,
                               identity[static_cast<std::size_t>(mesh.faces(f, 1))],
                               identity[static_cast<std::size_t>(mesh.faces(f, 2))]};
   };
-  auto corner_point = [&](int f, int slot) { return exact::point_of(mesh.vertices, mesh.faces(f, slot)); };
+  auto corner_point = [&](int f, int slot) {
+    return exact::point_of(mesh.vertices, mesh.faces(f, slot));
+  };
 
   std::atomic<std::size_t> untested{0};
   SelfIntersections result;

@@ -30,7 +30,8 @@ double median(std::vector<double>& values) {
                    values.end());
   const double upper = values[half];
   if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(half));
+  const double lower =
+      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(half));
   return 0.5 * (lower + upper);
 }
 
@@ -80,7 +81,8 @@ ShapeChange measure_shape_change(const TriangleMesh& input,
   std::vector<double> ratios;
   ratios.reserve(static_cast<std::size_t>(edges.rows()));
   for (Eigen::Index e = 0; e < edges.rows(); ++e) {
-    const double length_in = (input.vertices.row(edges(e, 0)) - input.vertices.row(edges(e, 1))).norm();
+    const double length_in =
+        (input.vertices.row(edges(e, 0)) - input.vertices.row(edges(e, 1))).norm();
     if (!(length_in > 0.0)) continue;
     ratios.push_back((output.row(edges(e, 0)) - output.row(edges(e, 1))).norm() / length_in);
   }
@@ -126,8 +128,9 @@ std::vector<std::string> shape_violations(const ShapeChange& change,
     out.push_back(fmt::format("scale-free mean edge-length change {:.3g} is above {:.3g}",
                               change.mean_edge_change, limits.mean_edge_change));
   if (change.p95_edge_change > limits.p95_edge_change)
-    out.push_back(fmt::format("scale-free 95th-percentile edge-length change {:.3g} is above {:.3g}",
-                              change.p95_edge_change, limits.p95_edge_change));
+    out.push_back(
+        fmt::format("scale-free 95th-percentile edge-length change {:.3g} is above {:.3g}",
+                    change.p95_edge_change, limits.p95_edge_change));
   if (std::abs(change.area_change) > limits.area_change)
     out.push_back(fmt::format("area changed by {:+.3g} (relative), beyond {:.3g}",
                               change.area_change, limits.area_change));

@@ -48,8 +48,8 @@ struct ShapeThresholds {
   double max_scale = 1.25;
   double mean_edge_change = 0.25;
   double p95_edge_change = 0.6;
-  double area_change = 0.5;        ///< on |area_change|
-  double loop_displacement = 0.25; ///< of the input's bounding-box diagonal
+  double area_change = 0.5;         ///< on |area_change|
+  double loop_displacement = 0.25;  ///< of the input's bounding-box diagonal
   /// False switches every check off (the numbers are still measured and reported).
   bool enabled = true;
 };

@@ -36,7 +36,8 @@ std::vector<double> distances_to_surface(const TriangleMesh& surface,
   tree.build();
   tree.accelerate_distance_queries();
   // CGAL builds its search structures lazily: one serial query before the parallel ones.
-  if (points.rows() > 0) tree.squared_distance(Kernel::Point_3(points(0, 0), points(0, 1), points(0, 2)));
+  if (points.rows() > 0)
+    tree.squared_distance(Kernel::Point_3(points(0, 0), points(0, 1), points(0, 2)));
   tbb::parallel_for(Eigen::Index(0), points.rows(), [&](Eigen::Index i) {
     const Kernel::Point_3 p(points(i, 0), points(i, 1), points(i, 2));
     out[static_cast<std::size_t>(i)] = std::sqrt(tree.squared_distance(p));

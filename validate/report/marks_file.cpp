@@ -73,7 +73,8 @@ void write_marks_obj(const std::string& path, const Validation& v) {
       writer.object(fmt::format("garment{}", i));
       writer.group("intersecting", v.garments[i].mesh, intersecting[i]);
       const std::vector<int>& degenerate = v.result.garments[i].degenerate_faces;
-      writer.group("degenerate", v.garments[i].mesh, std::set<int>(degenerate.begin(), degenerate.end()));
+      writer.group("degenerate", v.garments[i].mesh,
+                   std::set<int>(degenerate.begin(), degenerate.end()));
     }
     fmt::print(out, "# avatar: {}\n", v.avatar.path);
     writer.object("avatar");

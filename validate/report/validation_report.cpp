@@ -30,7 +30,8 @@ json pairs_json(const FacePairList& list, std::size_t max_listed) {
 }
 
 json indices_json(const std::vector<int>& indices, std::size_t max_listed) {
-  const auto end = indices.begin() + static_cast<std::ptrdiff_t>(std::min(max_listed, indices.size()));
+  const auto end =
+      indices.begin() + static_cast<std::ptrdiff_t>(std::min(max_listed, indices.size()));
   return json(std::vector<int>(indices.begin(), end));
 }
 
@@ -71,14 +72,20 @@ class Issues {
       messages_.push_back(std::move(message));
       ++kept;
     }
-    if (std::string(severity) == "error") errors_ += count;
-    else if (std::string(severity) == "warning") warnings_ += count;
-    else infos_ += count;
+    if (std::string(severity) == "error")
+      errors_ += count;
+    else if (std::string(severity) == "warning")
+      warnings_ += count;
+    else
+      infos_ += count;
   }
 
   json to_json() const {
-    return {{"num_errors", errors_}, {"num_warnings", warnings_}, {"num_infos", infos_},
-            {"truncated", truncated_}, {"messages", messages_}};
+    return {{"num_errors", errors_},
+            {"num_warnings", warnings_},
+            {"num_infos", infos_},
+            {"truncated", truncated_},
+            {"messages", messages_}};
   }
 
  private:
@@ -92,32 +99,43 @@ class Issues {
 void add_garment_issues(Issues& issues, const Validation& v, int index) {
   const GarmentFindings& g = v.result.garments[static_cast<std::size_t>(index)];
   const std::string& path = v.garments[static_cast<std::size_t>(index)].path;
-  issues.add("GARMENT_AVATAR_INTERSECTION", "error", g.avatar_intersections.count, [&](std::size_t i) {
-    const FacePair& p = g.avatar_intersections.pairs[i];
-    return json{{"message", fmt::format("garment face {} intersects avatar face {}", p.first, p.second)},
-                {"garment", index}, {"garment_face", p.first}, {"avatar_face", p.second}};
-  });
-  issues.add("GARMENT_SELF_INTERSECTION", "error", g.self_intersections.pairs.count, [&](std::size_t i) {
-    const FacePair& p = g.self_intersections.pairs.pairs[i];
-    return json{{"message", fmt::format("garment faces {} and {} intersect", p.first, p.second)},
-                {"garment", index}, {"faces", json::array({p.first, p.second})}};
-  });
+  issues.add(
+      "GARMENT_AVATAR_INTERSECTION", "error", g.avatar_intersections.count, [&](std::size_t i) {
+        const FacePair& p = g.avatar_intersections.pairs[i];
+        return json{{"message",
+                     fmt::format("garment face {} intersects avatar face {}", p.first, p.second)},
+                    {"garment", index},
+                    {"garment_face", p.first},
+                    {"avatar_face", p.second}};
+      });
+  issues.add("GARMENT_SELF_INTERSECTION", "error", g.self_intersections.pairs.count,
+             [&](std::size_t i) {
+               const FacePair& p = g.self_intersections.pairs.pairs[i];
+               return json{
+                   {"message", fmt::format("garment faces {} and {} intersect", p.first, p.second)},
+                   {"garment", index},
+                   {"faces", json::array({p.first, p.second})}};
+             });
   issues.add("DEGENERATE_FACE", "warning", g.degenerate_faces.size(), [&](std::size_t i) {
     return json{{"message", fmt::format("garment face {} has zero area (collinear corners)",
                                         g.degenerate_faces[i])},
-                {"garment", index}, {"garment_face", g.degenerate_faces[i]}};
+                {"garment", index},
+                {"garment_face", g.degenerate_faces[i]}};
   });
   const std::size_t untested = g.self_intersections.untested_degenerate_neighbours;
   issues.add("DEGENERATE_NEIGHBOURS_UNTESTED", "warning", untested ? 1 : 0, [&](std::size_t) {
     return json{{"message", fmt::format("{} pairs of a degenerate face and a neighbour sharing a "
-                                        "vertex were not tested for self-intersection", untested)},
-                {"garment", index}, {"pairs", untested}};
+                                        "vertex were not tested for self-intersection",
+                                        untested)},
+                {"garment", index},
+                {"pairs", untested}};
   });
   if (g.near_vertices) {
     issues.add("VERTEX_NEAR_AVATAR", "warning", g.near_vertices->size(), [&](std::size_t i) {
       return json{{"message", fmt::format("garment vertex {} is closer than {} to the avatar",
                                           (*g.near_vertices)[i], *v.options.threshold)},
-                  {"garment", index}, {"garment_vertex", (*g.near_vertices)[i]}};
+                  {"garment", index},
+                  {"garment_vertex", (*g.near_vertices)[i]}};
     });
   }
   for (const std::string& warning : v.garments[static_cast<std::size_t>(index)].warnings)
@@ -126,8 +144,9 @@ void add_garment_issues(Issues& issues, const Validation& v, int index) {
     });
   issues.add("CLEARANCE", "info", 1, [&](std::size_t) {
     return json{{"message", fmt::format("garment-avatar clearance {:.17g} between garment face {} "
-                                        "and avatar face {}", g.avatar_clearance.distance,
-                                        g.avatar_clearance.first_face, g.avatar_clearance.second_face)},
+                                        "and avatar face {}",
+                                        g.avatar_clearance.distance, g.avatar_clearance.first_face,
+                                        g.avatar_clearance.second_face)},
                 {"garment", index}};
   });
 }
@@ -140,10 +159,11 @@ json garment_json(const Validation& v, int index, std::size_t max_listed) {
               {"path", v.garments[static_cast<std::size_t>(index)].path},
               {"avatar_intersections", pairs_json(g.avatar_intersections, max_listed)},
               {"self_intersections", self},
-              {"degenerate_faces", {{"count", g.degenerate_faces.size()},
-                                    {"faces", indices_json(g.degenerate_faces, max_listed)}}},
-              {"avatar_clearance", clearance_json(g.avatar_clearance, g.clearance_has_points,
-                                                  "garment", "avatar")},
+              {"degenerate_faces",
+               {{"count", g.degenerate_faces.size()},
+                {"faces", indices_json(g.degenerate_faces, max_listed)}}},
+              {"avatar_clearance",
+               clearance_json(g.avatar_clearance, g.clearance_has_points, "garment", "avatar")},
               {"near_vertices", nullptr}};
   if (g.near_vertices)
     out["near_vertices"] = {{"threshold", *v.options.threshold},
@@ -170,10 +190,11 @@ nlohmann::ordered_json validation_report(const Validation& v, std::size_t max_li
                   {"garments", json::array({p.first, p.second})},
                   {"faces", json::array({f.first, f.second})}};
     });
-    pairs.push_back({{"first", p.first},
-                     {"second", p.second},
-                     {"intersections", pairs_json(p.intersections, max_listed)},
-                     {"clearance", clearance_json(p.clearance, p.clearance_has_points, "first", "second")}});
+    pairs.push_back(
+        {{"first", p.first},
+         {"second", p.second},
+         {"intersections", pairs_json(p.intersections, max_listed)},
+         {"clearance", clearance_json(p.clearance, p.clearance_has_points, "first", "second")}});
   }
   const ValidationTotals t = v.result.totals();
   json garment_files = json::array();
@@ -182,15 +203,17 @@ nlohmann::ordered_json validation_report(const Validation& v, std::size_t max_li
           {"kind", "validation_report"},
           {"tool", {{"name", "garment-retarget"}, {"version", GR_VERSION}}},
           {"inputs", {{"garments", garment_files}, {"avatar", file_json(v.avatar)}}},
-          {"parameters", {{"threshold", v.options.threshold ? json(*v.options.threshold) : json(nullptr)},
-                          {"max_listed", max_listed}}},
+          {"parameters",
+           {{"threshold", v.options.threshold ? json(*v.options.threshold) : json(nullptr)},
+            {"max_listed", max_listed}}},
           {"indexing", {{"faces", kFaceIndexing}, {"vertices", kVertexIndexing}}},
-          {"counts", {{"garment_avatar_intersections", t.garment_avatar_intersections},
-                      {"garment_self_intersections", t.garment_self_intersections},
-                      {"garment_garment_intersections", t.garment_garment_intersections},
-                      {"degenerate_faces", t.degenerate_faces},
-                      {"untested_degenerate_neighbours", t.untested_degenerate_neighbours},
-                      {"near_vertices", t.near_vertices ? json(*t.near_vertices) : json(nullptr)}}},
+          {"counts",
+           {{"garment_avatar_intersections", t.garment_avatar_intersections},
+            {"garment_self_intersections", t.garment_self_intersections},
+            {"garment_garment_intersections", t.garment_garment_intersections},
+            {"degenerate_faces", t.degenerate_faces},
+            {"untested_degenerate_neighbours", t.untested_degenerate_neighbours},
+            {"near_vertices", t.near_vertices ? json(*t.near_vertices) : json(nullptr)}}},
           {"issues", issues.to_json()},
           {"garments", garments},
           {"garment_pairs", pairs},

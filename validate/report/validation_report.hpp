@@ -19,7 +19,7 @@ constexpr std::size_t kDefaultListedIssues = 100;
 /// order), clearances in the input's units, and `certified`.
 /// @param max_listed how many pairs, faces or vertices each list holds; all are counted.
 nlohmann::ordered_json validation_report(const Validation& validation,
-                                 std::size_t max_listed = kDefaultListedIssues);
+                                         std::size_t max_listed = kDefaultListedIssues);
 
 /// One line for people: certified or not, and the counts that decided it.
 std::string validation_summary(const Validation& validation);

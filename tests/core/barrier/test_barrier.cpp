@@ -42,6 +42,7 @@ TEST_CASE("barrier derivatives match finite differences", "[barrier][grad]") {
   };
   const Eigen::VectorXd at = Eigen::VectorXd::Constant(1, x);
   CHECK(gr::test::fd_matches(first(at), gr::test::fd_gradient(value, at, h), 1e-6));
-  CHECK(gr::test::fd_matches(Eigen::MatrixXd::Constant(1, 1, gr::barrier_second_derivative(x, xhat)),
-                             gr::test::fd_hessian(first, at, h), 1e-6));
+  CHECK(
+      gr::test::fd_matches(Eigen::MatrixXd::Constant(1, 1, gr::barrier_second_derivative(x, xhat)),
+                           gr::test::fd_hessian(first, at, h), 1e-6));
 }

@@ -21,7 +21,8 @@ std::vector<Eigen::AlignedBox3d> random_boxes(std::mt19937& rng, int count, doub
 
 /// Whether two boxes intersect once each is grown by `slack` (the tree's float rounding).
 bool near_intersect(const Eigen::AlignedBox3d& a, const Eigen::AlignedBox3d& b, double slack) {
-  return ((a.min().array() - slack) <= b.max().array()).all() && ((b.min().array() - slack) <= a.max().array()).all();
+  return ((a.min().array() - slack) <= b.max().array()).all() &&
+         ((b.min().array() - slack) <= a.max().array()).all();
 }
 
 }  // namespace
@@ -48,7 +49,8 @@ TEST_CASE("BVH queries return every intersecting box and no far one", "[broad_ph
   }
 }
 
-TEST_CASE("BVH pair search matches brute force, across two trees and within one", "[broad_phase][bvh]") {
+TEST_CASE("BVH pair search matches brute force, across two trees and within one",
+          "[broad_phase][bvh]") {
   const int count = GENERATE(1, 6, 700);
   std::mt19937 rng(static_cast<unsigned>(count));
   const auto first = random_boxes(rng, count, 0.05), second = random_boxes(rng, count + 3, 0.05);
@@ -57,7 +59,8 @@ TEST_CASE("BVH pair search matches brute force, across two trees and within one"
   b.build(second);
   using Pair = std::pair<int, int>;
   const auto emit = [](int i, int j, std::vector<Pair>& sink) { sink.emplace_back(i, j); };
-  std::vector<Pair> across = a.collect_pairs<Pair>(b, emit), within = a.collect_pairs<Pair>(a, emit);
+  std::vector<Pair> across = a.collect_pairs<Pair>(b, emit),
+                    within = a.collect_pairs<Pair>(a, emit);
   for (Pair& p : within) p = {std::min(p.first, p.second), std::max(p.first, p.second)};
   std::sort(across.begin(), across.end());
   std::sort(within.begin(), within.end());
@@ -65,13 +68,17 @@ TEST_CASE("BVH pair search matches brute force, across two trees and within one"
   REQUIRE(std::adjacent_find(within.begin(), within.end()) == within.end());
   for (int i = 0; i < count; ++i) {
     for (int j = 0; j < count + 3; ++j) {
-      const bool hit = first[static_cast<std::size_t>(i)].intersects(second[static_cast<std::size_t>(j)]);
+      const bool hit =
+          first[static_cast<std::size_t>(i)].intersects(second[static_cast<std::size_t>(j)]);
       const bool found = std::binary_search(across.begin(), across.end(), Pair{i, j});
       if (hit) REQUIRE(found);
-      if (found) REQUIRE(near_intersect(first[static_cast<std::size_t>(i)], second[static_cast<std::size_t>(j)], 1e-6));
+      if (found)
+        REQUIRE(near_intersect(first[static_cast<std::size_t>(i)],
+                               second[static_cast<std::size_t>(j)], 1e-6));
     }
     for (int j = i + 1; j < count; ++j) {
-      const bool hit = first[static_cast<std::size_t>(i)].intersects(first[static_cast<std::size_t>(j)]);
+      const bool hit =
+          first[static_cast<std::size_t>(i)].intersects(first[static_cast<std::size_t>(j)]);
       if (hit) REQUIRE(std::binary_search(within.begin(), within.end(), Pair{i, j}));
     }
   }
@@ -80,19 +87,23 @@ TEST_CASE("BVH pair search matches brute force, across two trees and within one"
 
 TEST_CASE("BVH handles coincident boxes and touching faces", "[broad_phase][bvh]") {
   // Every box identical (all centres equal: the split cannot separate them by position).
-  std::vector<Eigen::AlignedBox3d> boxes(100, Eigen::AlignedBox3d(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()));
+  std::vector<Eigen::AlignedBox3d> boxes(
+      100, Eigen::AlignedBox3d(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()));
   gr::Bvh bvh;
   bvh.build(boxes);
   int hits = 0;
-  bvh.query(Eigen::AlignedBox3d(Eigen::Vector3d::Ones(), Eigen::Vector3d::Constant(2.0)), [&](int) { ++hits; });
-  CHECK(hits == 100);  // closed boxes: touching at a corner counts
-  hits = 0;  // beyond the float rounding's reach
-  bvh.query(Eigen::AlignedBox3d(Eigen::Vector3d::Constant(1.0 + 1e-6), Eigen::Vector3d::Constant(2.0)),
+  bvh.query(Eigen::AlignedBox3d(Eigen::Vector3d::Ones(), Eigen::Vector3d::Constant(2.0)),
             [&](int) { ++hits; });
+  CHECK(hits == 100);  // closed boxes: touching at a corner counts
+  hits = 0;            // beyond the float rounding's reach
+  bvh.query(
+      Eigen::AlignedBox3d(Eigen::Vector3d::Constant(1.0 + 1e-6), Eigen::Vector3d::Constant(2.0)),
+      [&](int) { ++hits; });
   CHECK(hits == 0);
 }
 
-TEST_CASE("a refitted BVH answers as a rebuilt one and reports its loosening", "[broad_phase][bvh]") {
+TEST_CASE("a refitted BVH answers as a rebuilt one and reports its loosening",
+          "[broad_phase][bvh]") {
   std::mt19937 rng(11u);
   const auto boxes = random_boxes(rng, 900, 0.05);
   gr::Bvh tree;
@@ -118,8 +129,11 @@ TEST_CASE("a refitted BVH answers as a rebuilt one and reports its loosening", "
       REQUIRE(from_refit == from_build);
     }
     using Pair = std::pair<int, int>;
-    const auto emit = [](int i, int j, std::vector<Pair>& sink) { sink.emplace_back(std::min(i, j), std::max(i, j)); };
-    auto pairs_refit = tree.collect_pairs<Pair>(tree, emit), pairs_build = rebuilt.collect_pairs<Pair>(rebuilt, emit);
+    const auto emit = [](int i, int j, std::vector<Pair>& sink) {
+      sink.emplace_back(std::min(i, j), std::max(i, j));
+    };
+    auto pairs_refit = tree.collect_pairs<Pair>(tree, emit),
+         pairs_build = rebuilt.collect_pairs<Pair>(rebuilt, emit);
     std::sort(pairs_refit.begin(), pairs_refit.end());
     std::sort(pairs_build.begin(), pairs_build.end());
     REQUIRE(pairs_refit == pairs_build);

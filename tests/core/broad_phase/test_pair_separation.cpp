@@ -28,7 +28,8 @@ Stencil lerp(const Stencil& x0, const Stencil& x1, double t) {
 
 }  // namespace
 
-TEST_CASE("pair separation bound never exceeds the distance along the motion", "[broad_phase][separation]") {
+TEST_CASE("pair separation bound never exceeds the distance along the motion",
+          "[broad_phase][separation]") {
   const int split = GENERATE(1, 2);
   const double spread = GENERATE(0.1, 1.0, 3.0);  // how far apart the primitives start
   CAPTURE(split, spread);
@@ -58,30 +59,37 @@ TEST_CASE("pair separation bound never exceeds the distance along the motion", "
   if (spread > 1.0) CHECK(separated > 1000);
 }
 
-TEST_CASE("pair separation bound separates mesh neighbours whose boxes overlap", "[broad_phase][separation]") {
+TEST_CASE("pair separation bound separates mesh neighbours whose boxes overlap",
+          "[broad_phase][separation]") {
   // Two edges side by side in a flat strip (a grid's 2-ring), boxes overlapping: the bound
   // along the centroid line sees the gap that the boxes do not.
-  const Stencil edges = {Vector3d(0, 0, 0), Vector3d(1, 1, 0), Vector3d(0.6, 0, 0), Vector3d(1.6, 1, 0)};
+  const Stencil edges = {Vector3d(0, 0, 0), Vector3d(1, 1, 0), Vector3d(0.6, 0, 0),
+                         Vector3d(1.6, 1, 0)};
   const double gap = distance(edges, 2);
   const double bound = gr::pair_separation_lower_bound(edges, 2);
   CHECK(bound > 0.5 * gap);
   CHECK(bound <= gap + 1e-12);
   // A point above a tilted triangle: the triangle's normal separates them.
-  const Stencil above = {Vector3d(0.5, 0.5, 0.6), Vector3d(0, 0, 0), Vector3d(1, 0, 0.5), Vector3d(0, 1, 0.5)};
+  const Stencil above = {Vector3d(0.5, 0.5, 0.6), Vector3d(0, 0, 0), Vector3d(1, 0, 0.5),
+                         Vector3d(0, 1, 0.5)};
   CHECK(gr::pair_separation_lower_bound(above, 1) > 0.0);
   CHECK(gr::pair_separation_lower_bound(above, 1) <= distance(above, 1) + 1e-12);
   // Degenerate: coincident primitives and a zero-length edge give 0, never NaN.
-  const Stencil coincident = {Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(0, 0, 0)};
+  const Stencil coincident = {Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(0, 0, 0),
+                              Vector3d(0, 0, 0)};
   CHECK(gr::pair_separation_lower_bound(coincident, 2) == 0.0);
   CHECK(gr::pair_separation_lower_bound(coincident, 1) == 0.0);
 }
 
-TEST_CASE("pair separation bound follows a pair carried along together", "[broad_phase][separation]") {
+TEST_CASE("pair separation bound follows a pair carried along together",
+          "[broad_phase][separation]") {
   // A point 0.1 above a triangle, both moved 5 units sideways: the swept hulls overlap, yet
   // the gap never changes, and the bound in the pair's moving frame sees it.
   const int split = GENERATE(1, 2);
-  Stencil x0 = split == 1 ? Stencil{Vector3d(0.2, 0.2, 0.1), Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)}
-                          : Stencil{Vector3d(0, 0, 0.1), Vector3d(1, 0, 0.1), Vector3d(0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)};
+  Stencil x0 = split == 1 ? Stencil{Vector3d(0.2, 0.2, 0.1), Vector3d(0, 0, 0), Vector3d(1, 0, 0),
+                                    Vector3d(0, 1, 0)}
+                          : Stencil{Vector3d(0, 0, 0.1), Vector3d(1, 0, 0.1),
+                                    Vector3d(0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)};
   Stencil x1 = x0;
   for (Vector3d& p : x1) p += Vector3d(5.0, -3.0, 0.4);
   const double bound = gr::pair_separation_lower_bound(x0, x1, split);

@@ -26,7 +26,8 @@ using Key = std::array<int, 4>;
 struct CandidateKeys {
   std::set<Key> point_triangle, edge_edge;
   explicit CandidateKeys(const gr::Candidates& c) {
-    for (const auto& pt : c.point_triangle) point_triangle.insert({pt.point, pt.triangle[0], pt.triangle[1], pt.triangle[2]});
+    for (const auto& pt : c.point_triangle)
+      point_triangle.insert({pt.point, pt.triangle[0], pt.triangle[1], pt.triangle[2]});
     for (const auto& ee : c.edge_edge) {
       edge_edge.insert({ee.edge_a[0], ee.edge_a[1], ee.edge_b[0], ee.edge_b[1]});
       edge_edge.insert({ee.edge_b[0], ee.edge_b[1], ee.edge_a[0], ee.edge_a[1]});
@@ -77,7 +78,8 @@ std::size_t check_against_brute_force(const gr::ContactMesh& mesh, const MatrixX
   const auto point_vs_faces = [&](int v, const gr::MatrixX3i& F) {
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
       if (face_has(F, f, v)) continue;
-      if (gr::point_triangle_distance_sq(row(V, v), row(V, F(f, 0)), row(V, F(f, 1)), row(V, F(f, 2))) >= r_sq)
+      if (gr::point_triangle_distance_sq(row(V, v), row(V, F(f, 0)), row(V, F(f, 1)),
+                                         row(V, F(f, 2))) >= r_sq)
         continue;
       ++found;
       CAPTURE(v, f);
@@ -87,8 +89,10 @@ std::size_t check_against_brute_force(const gr::ContactMesh& mesh, const MatrixX
   const auto edge_vs_edges = [&](Eigen::Index e, const gr::MatrixX2i& E) {
     const gr::MatrixX2i& G = mesh.garment_edges;
     for (Eigen::Index f = 0; f < E.rows(); ++f) {
-      if (G(e, 0) == E(f, 0) || G(e, 0) == E(f, 1) || G(e, 1) == E(f, 0) || G(e, 1) == E(f, 1)) continue;
-      if (gr::edge_edge_distance_sq(row(V, G(e, 0)), row(V, G(e, 1)), row(V, E(f, 0)), row(V, E(f, 1))) >= r_sq)
+      if (G(e, 0) == E(f, 0) || G(e, 0) == E(f, 1) || G(e, 1) == E(f, 0) || G(e, 1) == E(f, 1))
+        continue;
+      if (gr::edge_edge_distance_sq(row(V, G(e, 0)), row(V, G(e, 1)), row(V, E(f, 0)),
+                                    row(V, E(f, 1))) >= r_sq)
         continue;
       ++found;
       CAPTURE(e, f);
@@ -99,7 +103,8 @@ std::size_t check_against_brute_force(const gr::ContactMesh& mesh, const MatrixX
     point_vs_faces(v, mesh.avatar_faces);
     if (mesh.self_contact) point_vs_faces(v, mesh.garment_faces);
   }
-  for (int v = mesh.garment_vertex_count; v < mesh.vertex_count(); v += stride) point_vs_faces(v, mesh.garment_faces);
+  for (int v = mesh.garment_vertex_count; v < mesh.vertex_count(); v += stride)
+    point_vs_faces(v, mesh.garment_faces);
   for (Eigen::Index e = 0; e < mesh.garment_edges.rows(); e += stride) {
     edge_vs_edges(e, mesh.avatar_edges);
     if (mesh.self_contact) edge_vs_edges(e, mesh.garment_edges);
@@ -180,28 +185,33 @@ struct SharedScene {
   MatrixX3d V;
 };
 
-SharedScene shared_scene(const std::string& garment_file, const std::string& avatar_file, bool match_size) {
+SharedScene shared_scene(const std::string& garment_file, const std::string& avatar_file,
+                         bool match_size) {
   gr::TriangleMesh garment = load(garment_file), avatar = load(avatar_file);
   place(garment, avatar, match_size);
   return {gr::ContactMesh::build(garment, avatar, true), stacked(garment, avatar)};
 }
 
 SharedScene generated_scene() {
-  const auto [garment_file, avatar_file, match_size] = GENERATE(
-      std::make_tuple(std::string("garments/skirt/garment.obj"), std::string("avatars/foxgirl/avatar.obj"), false),
-      std::make_tuple(std::string("garments/puffer/garment.obj"), std::string("avatars/goblin/avatar.obj"), true));
+  const auto [garment_file, avatar_file, match_size] =
+      GENERATE(std::make_tuple(std::string("garments/skirt/garment.obj"),
+                               std::string("avatars/foxgirl/avatar.obj"), false),
+               std::make_tuple(std::string("garments/puffer/garment.obj"),
+                               std::string("avatars/goblin/avatar.obj"), true));
   CAPTURE(garment_file, avatar_file);
   return shared_scene(garment_file, avatar_file, match_size);
 }
 
 }  // namespace
 
-TEST_CASE("broad phase finds every pair brute force finds on the shared scenes", "[candidates][shared]") {
+TEST_CASE("broad phase finds every pair brute force finds on the shared scenes",
+          "[candidates][shared]") {
   const SharedScene scene = generated_scene();
   const double radius = GENERATE(0.002, 0.02);
   CAPTURE(radius);
   const gr::Candidates candidates = gr::find_candidates(scene.mesh, scene.V, radius);
-  const std::size_t checked = check_against_brute_force(scene.mesh, scene.V, candidates, radius, 17);
+  const std::size_t checked =
+      check_against_brute_force(scene.mesh, scene.V, candidates, radius, 17);
   CHECK(checked > 0);
   if (radius > 0.01) CHECK(checked > 1000);
 }
@@ -216,11 +226,13 @@ TEST_CASE("swept broad phase finds every pair close along the motion", "[candida
   V1.bottomRows(scene.mesh.avatar_vertex_count) *= 0.99;
   const gr::Candidates swept = gr::find_swept_candidates(scene.mesh, scene.V, V1, radius);
   CHECK(check_against_brute_force(scene.mesh, V1, swept, radius, 17) > 0);
-  CHECK(check_against_brute_force(scene.mesh, (0.5 * (scene.V + V1)).eval(), swept, radius, 17) > 0);
+  CHECK(check_against_brute_force(scene.mesh, (0.5 * (scene.V + V1)).eval(), swept, radius, 17) >
+        0);
   CHECK(swept.size() >= gr::find_candidates(scene.mesh, scene.V, radius).size());
 }
 
-TEST_CASE("candidate finder: static queries on a swept motion reuse its pairs", "[candidates][shared]") {
+TEST_CASE("candidate finder: static queries on a swept motion reuse its pairs",
+          "[candidates][shared]") {
   // A point on the last swept motion filters the swept list; one off it searches again.
   // Either way every pair within the radius must be found.
   const SharedScene scene = generated_scene();
@@ -242,10 +254,12 @@ TEST_CASE("candidate finder: static queries on a swept motion reuse its pairs", 
   CHECK(searched.size() == gr::find_candidates(scene.mesh, off_motion, radius).size());
 }
 
-TEST_CASE("self pairs left out lie inside regions proven fold free along the motion", "[candidates][shared]") {
+TEST_CASE("self pairs left out lie inside regions proven fold free along the motion",
+          "[candidates][shared]") {
   // The puffer's vertices each moved by up to a few millimetres at random: the separation
   // bound over such a motion is loose, while most of the jacket still cannot fold.
-  const SharedScene scene = shared_scene("garments/puffer/garment.obj", "avatars/goblin/avatar.obj", true);
+  const SharedScene scene =
+      shared_scene("garments/puffer/garment.obj", "avatars/goblin/avatar.obj", true);
   const double radius = 0.005;
   MatrixX3d V1 = scene.V;
   std::mt19937 rng(5);
@@ -287,16 +301,18 @@ TEST_CASE("self pairs left out lie inside regions proven fold free along the mot
   std::vector<std::set<int>> fold_free_vertices;
   for (std::size_t r = 0; r < regions->regions.size(); ++r)
     if (finder.fold_free()[r])
-      fold_free_vertices.emplace_back(regions->regions[r].vertices.begin(), regions->regions[r].vertices.end());
+      fold_free_vertices.emplace_back(regions->regions[r].vertices.begin(),
+                                      regions->regions[r].vertices.end());
   // Pairs across the seam of two neighbouring leaves are left out when their union is.
   const double threshold = radius + 2e-10;  // the swept query's (CandidateFinder::find_swept)
   for (const auto& entry : regions->leaf_unions)
     if (gr::stays_fold_free(entry.second, scene.mesh.garment_faces, scene.V, V1, threshold))
       fold_free_vertices.emplace_back(entry.second.vertices.begin(), entry.second.vertices.end());
   const auto inside_one = [&](const Key& key) {
-    return std::any_of(fold_free_vertices.begin(), fold_free_vertices.end(), [&](const std::set<int>& region) {
-      return std::all_of(key.begin(), key.end(), [&](int v) { return region.count(v) == 1; });
-    });
+    return std::any_of(
+        fold_free_vertices.begin(), fold_free_vertices.end(), [&](const std::set<int>& region) {
+          return std::all_of(key.begin(), key.end(), [&](int v) { return region.count(v) == 1; });
+        });
   };
   std::size_t left_out = 0;
   for (const Key& key : all_pt)

@@ -15,7 +15,8 @@ using Region = gr::GarmentRegions::Region;
 namespace {
 
 gr::GarmentRegions regions_of(const gr::TriangleMesh& mesh, int max_leaf_faces) {
-  return gr::build_garment_regions(mesh.faces, gr::unique_edges(mesh.faces), mesh.vertices, max_leaf_faces);
+  return gr::build_garment_regions(mesh.faces, gr::unique_edges(mesh.faces), mesh.vertices,
+                                   max_leaf_faces);
 }
 
 /// A flat-ish strip between radii 1 and 1.5 around the z axis, from angle 0 to `end`, rising
@@ -44,7 +45,8 @@ const Region& only_root(const gr::GarmentRegions& regions) {
 
 }  // namespace
 
-TEST_CASE("garment regions: leaves partition the faces and every join covers its two parts", "[candidates][fold_free]") {
+TEST_CASE("garment regions: leaves partition the faces and every join covers its two parts",
+          "[candidates][fold_free]") {
   const gr::TriangleMesh grid = gr::test::curved_grid(11, 0.0);
   const gr::GarmentRegions regions = regions_of(grid, 16);
   const auto face_count = static_cast<std::size_t>(grid.faces.rows());
@@ -64,8 +66,9 @@ TEST_CASE("garment regions: leaves partition the faces and every join covers its
     const Region& region = regions.regions[r];
     if (region.leaf >= 0) continue;
     for (int child : region.children) CHECK(static_cast<std::size_t>(child) < r);  // children first
-    const std::size_t parts = regions.regions[static_cast<std::size_t>(region.children[0])].faces.size() +
-                              regions.regions[static_cast<std::size_t>(region.children[1])].faces.size();
+    const std::size_t parts =
+        regions.regions[static_cast<std::size_t>(region.children[0])].faces.size() +
+        regions.regions[static_cast<std::size_t>(region.children[1])].faces.size();
     CHECK(region.faces.size() == parts);
   }
   const Region& root = only_root(regions);
@@ -76,7 +79,8 @@ TEST_CASE("garment regions: leaves partition the faces and every join covers its
   for (int leaf : regions.edge_leaf) CHECK(leaf >= 0);
 }
 
-TEST_CASE("fold free: a flat sheet is, and a clearance above its face heights is not met", "[candidates][fold_free]") {
+TEST_CASE("fold free: a flat sheet is, and a clearance above its face heights is not met",
+          "[candidates][fold_free]") {
   const gr::TriangleMesh grid = gr::test::curved_grid(11, 0.0);
   const gr::GarmentRegions regions = regions_of(grid, 16);
   const Region& root = only_root(regions);
@@ -92,7 +96,8 @@ TEST_CASE("fold free: a flat sheet is, and a clearance above its face heights is
   CHECK(gr::stays_fold_free(only_root(curved_regions), curved.faces, curved.vertices, moved, 0.01));
 }
 
-TEST_CASE("fold free: folding a sheet over onto itself is not, its resting half is", "[candidates][fold_free]") {
+TEST_CASE("fold free: folding a sheet over onto itself is not, its resting half is",
+          "[candidates][fold_free]") {
   const gr::TriangleMesh grid = gr::test::curved_grid(11, 0.0);
   const gr::GarmentRegions regions = regions_of(grid, 16);
   MatrixX3d folded = grid.vertices;
@@ -116,7 +121,9 @@ TEST_CASE("fold free: folding a sheet over onto itself is not, its resting half 
   CHECK(resting > 0);
 }
 
-TEST_CASE("fold free: a strip lying over itself in projection is not, though every normal points up", "[candidates][fold_free]") {
+TEST_CASE(
+    "fold free: a strip lying over itself in projection is not, though every normal points up",
+    "[candidates][fold_free]") {
   const gr::TriangleMesh spiral = ring_strip(3.0 * M_PI, 60, 0.02);
   const gr::GarmentRegions spiral_regions = regions_of(spiral, 1000);
   const Region& coiled = only_root(spiral_regions);
@@ -127,7 +134,8 @@ TEST_CASE("fold free: a strip lying over itself in projection is not, though eve
   CHECK(gr::stays_fold_free(only_root(arc_regions), arc.faces, arc.vertices, arc.vertices));
 }
 
-TEST_CASE("fold free: the boundary keeps the clearance from itself across a gap", "[candidates][fold_free]") {
+TEST_CASE("fold free: the boundary keeps the clearance from itself across a gap",
+          "[candidates][fold_free]") {
   // A C-shaped ring whose two ends are about 0.05 apart; its faces are far thicker.
   const gr::TriangleMesh ring = ring_strip(2.0 * M_PI - 0.05, 40, 0.0);
   const gr::GarmentRegions ring_regions = regions_of(ring, 1000);
@@ -139,7 +147,8 @@ TEST_CASE("fold free: the boundary keeps the clearance from itself across a gap"
   CHECK_FALSE(gr::stays_fold_free(c_shape, ring.faces, ring.vertices, closed.vertices));
 }
 
-TEST_CASE("fold free: a face that turns over and back within one motion is caught", "[candidates][fold_free]") {
+TEST_CASE("fold free: a face that turns over and back within one motion is caught",
+          "[candidates][fold_free]") {
   // p1 = (1, 3τ), p2 = (3 - 3τ, 1): the orientation 1 - 9τ(1 - τ) is positive at both ends
   // and negative in the middle.
   gr::TriangleMesh face;
@@ -157,7 +166,8 @@ TEST_CASE("fold free: a face that turns over and back within one motion is caugh
   CHECK_FALSE(gr::stays_fold_free(single, face.faces, face.vertices, end));
 }
 
-TEST_CASE("garment regions: pieces, holes and inconsistent orientation", "[candidates][fold_free]") {
+TEST_CASE("garment regions: pieces, holes and inconsistent orientation",
+          "[candidates][fold_free]") {
   // Two separate sheets: two roots. A sheet with a hole: not a disk at the top.
   gr::TriangleMesh two = gr::test::curved_grid(5, 0.0);
   const auto faces = two.faces.rows(), vertices = two.vertices.rows();
@@ -175,12 +185,14 @@ TEST_CASE("garment regions: pieces, holes and inconsistent orientation", "[candi
       if (annulus.faces(f, k) >= 48) annulus.faces(f, k) -= 48;
   const gr::GarmentRegions closed = regions_of(annulus, 1000);
   CHECK_FALSE(only_root(closed).disk);
-  CHECK_FALSE(gr::stays_fold_free(only_root(closed), annulus.faces, annulus.vertices, annulus.vertices));
+  CHECK_FALSE(
+      gr::stays_fold_free(only_root(closed), annulus.faces, annulus.vertices, annulus.vertices));
 
   gr::TriangleMesh flipped = gr::test::curved_grid(5, 0.0);
   std::swap(flipped.faces(3, 1), flipped.faces(3, 2));  // one face turned the other way
   const gr::GarmentRegions mixed = regions_of(flipped, 1000);
   for (const Region& region : mixed.regions)
-    if (std::find(region.faces.begin(), region.faces.end(), 3) != region.faces.end() && region.faces.size() > 1)
+    if (std::find(region.faces.begin(), region.faces.end(), 3) != region.faces.end() &&
+        region.faces.size() > 1)
       CHECK_FALSE(gr::stays_fold_free(region, flipped.faces, flipped.vertices, flipped.vertices));
 }

@@ -26,19 +26,23 @@ Stencil at(const Stencil& x0, const Stencil& x1, double t) {
 
 /// Runs the pair's CCD and checks that on densely sampled times in [0, step] the pair
 /// keeps the separation (ratio times its starting distance). Returns the step.
-double checked_step(const Stencil& x0, const Stencil& x1, bool edge_edge, const gr::CcdOptions& options = {}) {
-  const double step = edge_edge ? gr::edge_edge_ccd(x0, x1, options) : gr::point_triangle_ccd(x0, x1, options);
+double checked_step(const Stencil& x0, const Stencil& x1, bool edge_edge,
+                    const gr::CcdOptions& options = {}) {
+  const double step =
+      edge_edge ? gr::edge_edge_ccd(x0, x1, options) : gr::point_triangle_ccd(x0, x1, options);
   const double d0 = distance(x0, edge_edge);
   // A pair that starts below the absolute floor is held to the ratio only.
-  const double separation = d0 <= options.min_separation
-                                ? options.min_separation_ratio * d0
-                                : std::max(options.min_separation_ratio * d0, options.min_separation);
+  const double separation =
+      d0 <= options.min_separation
+          ? options.min_separation_ratio * d0
+          : std::max(options.min_separation_ratio * d0, options.min_separation);
   CAPTURE(step, d0, separation);
   REQUIRE(step >= 0.0);
   REQUIRE(step <= 1.0);
   const int samples = 20000;
   double closest = std::numeric_limits<double>::infinity();
-  for (int k = 0; k <= samples; ++k) closest = std::min(closest, distance(at(x0, x1, step * k / samples), edge_edge));
+  for (int k = 0; k <= samples; ++k)
+    closest = std::min(closest, distance(at(x0, x1, step * k / samples), edge_edge));
   if (step > 0.0) CHECK(closest >= separation * (1.0 - 1e-9));
   return step;
 }
@@ -62,7 +66,8 @@ TEST_CASE("CCD: a vertex tunnelling through a triangle at high speed", "[ccd]") 
 TEST_CASE("CCD: parallel edges sliding through each other", "[ccd]") {
   const double angle = GENERATE(0.0, 1e-10, 1e-4);
   const Vector3d along(std::cos(angle), std::sin(angle), 0.0);
-  const Stencil x0{Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.2, 0, 0.1), Vector3d(0.2, 0, 0.1) + along};
+  const Stencil x0{Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.2, 0, 0.1),
+                   Vector3d(0.2, 0, 0.1) + along};
   Stencil x1 = x0;
   x1[2] += Vector3d(0.3, 0, -0.2);
   x1[3] += Vector3d(0.3, 0, -0.2);
@@ -83,7 +88,8 @@ TEST_CASE("CCD: motion exactly in a triangle's plane", "[ccd]") {
     CHECK(checked_step(x0, x1, false) == 1.0);
   }
   SECTION("coplanar edges crossing") {
-    const Stencil x0{Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.5, 0), Vector3d(0.5, 1.5, 0)};
+    const Stencil x0{Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0.5, 0),
+                     Vector3d(0.5, 1.5, 0)};
     Stencil x1 = x0;
     x1[2].y() -= 1.0;
     x1[3].y() -= 1.0;
@@ -99,7 +105,9 @@ TEST_CASE("CCD: tiny starting distance, zero motion, receding", "[ccd]") {
     CHECK(step > 0.0);
   }
   SECTION("zero motion") { CHECK(gr::point_triangle_ccd(near, near, {}) == 1.0); }
-  SECTION("receding") { CHECK(checked_step(near, triangle_with(Vector3d(0.25, 0.25, 1.0)), false) == 1.0); }
+  SECTION("receding") {
+    CHECK(checked_step(near, triangle_with(Vector3d(0.25, 0.25, 1.0)), false) == 1.0);
+  }
   SECTION("touching and moving") {
     const Stencil touching = triangle_with(Vector3d(0.25, 0.25, 0.0));
     CHECK(gr::point_triangle_ccd(touching, triangle_with(Vector3d(0.25, 0.25, 1.0)), {}) == 0.0);
@@ -126,14 +134,16 @@ TEST_CASE("CCD: a rotating triangle approximated by linear motion", "[ccd]") {
 }
 
 TEST_CASE("CCD: both sides moving", "[ccd]") {
-  const Stencil x0{Vector3d(0.3, 0.3, 0.5), Vector3d(0, 0, -0.5), Vector3d(1, 0, -0.5), Vector3d(0, 1, -0.5)};
+  const Stencil x0{Vector3d(0.3, 0.3, 0.5), Vector3d(0, 0, -0.5), Vector3d(1, 0, -0.5),
+                   Vector3d(0, 1, -0.5)};
   Stencil x1 = x0;
   x1[0].z() -= 2.0;
   for (int i = 1; i < 4; ++i) x1[i] += Vector3d(0.1, -0.2, 2.0);
   const double step = checked_step(x0, x1, false);
   CHECK(step < 0.25);  // they meet at a quarter of the motion
   CHECK(step > 0.2);
-  const Stencil e0{Vector3d(-1, 0, 0.5), Vector3d(1, 0, 0.5), Vector3d(0, -1, -0.5), Vector3d(0, 1, -0.5)};
+  const Stencil e0{Vector3d(-1, 0, 0.5), Vector3d(1, 0, 0.5), Vector3d(0, -1, -0.5),
+                   Vector3d(0, 1, -0.5)};
   Stencil e1 = e0;
   e1[0].z() -= 1.0;
   e1[1].z() -= 1.0;
@@ -144,13 +154,15 @@ TEST_CASE("CCD: both sides moving", "[ccd]") {
 
 TEST_CASE("CCD: degenerate elements", "[ccd]") {
   SECTION("collinear triangle") {
-    const Stencil x0{Vector3d(0.5, 0.5, 0), Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(2, 0, 0)};
+    const Stencil x0{Vector3d(0.5, 0.5, 0), Vector3d(0, 0, 0), Vector3d(1, 0, 0),
+                     Vector3d(2, 0, 0)};
     Stencil x1 = x0;
     x1[0].y() = -0.5;
     CHECK(checked_step(x0, x1, false) < 0.5);
   }
   SECTION("zero-length edge") {
-    const Stencil x0{Vector3d(0.5, 0.5, 0), Vector3d(0.5, 0.5, 0), Vector3d(0, 0, 0), Vector3d(1, 0, 0)};
+    const Stencil x0{Vector3d(0.5, 0.5, 0), Vector3d(0.5, 0.5, 0), Vector3d(0, 0, 0),
+                     Vector3d(1, 0, 0)};
     Stencil x1 = x0;
     x1[0].y() = x1[1].y() = -0.5;
     CHECK(checked_step(x0, x1, true) < 0.5);
@@ -175,9 +187,9 @@ TEST_CASE("CCD: an exhausted budget returns a smaller step, never a larger one",
 TEST_CASE("max_step takes the minimum over the candidates", "[ccd]") {
   gr::MatrixX3d V0(8, 3), V1;
   V0 << 0.25, 0.25, 1.0, 0, 0, 0, 1, 0, 0, 0, 1, 0,  // point above a triangle
-      0, 0, 2, 1, 0, 2, 0.5, -0.5, 3, 0.5, 0.5, 3;  // two crossing edges
+      0, 0, 2, 1, 0, 2, 0.5, -0.5, 3, 0.5, 0.5, 3;   // two crossing edges
   V1 = V0;
-  V1(0, 2) = -1.0;  // reaches the triangle at 0.5
+  V1(0, 2) = -1.0;                      // reaches the triangle at 0.5
   V1.row(6).z() = V1.row(7).z() = 1.0;  // reaches edge a at 0.5 too, but later with separation
   V1.row(6).z() = 2.8;
   V1.row(7).z() = 2.8;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "core/distance/edge_edge_distance.hpp"
 #include "core/distance/distance_test_support.hpp"
+#include "core/distance/edge_edge_distance.hpp"
 
 using gr::EdgeEdgeDistanceType;
 using gr::Vector3d;
@@ -99,7 +99,8 @@ TEST_CASE("edge-edge distance in every closest-feature region", "[distance][grad
     eb1 = Vector3d(1.6, 2, h);
     expected = T::EA1_EB0;
   }
-  const auto x = gr::test::moved<4>({ea0, ea1, eb0, eb1}, gr::test::random_rotation(seed), Vector3d(0.1, -0.2, 0.3));
+  const auto x = gr::test::moved<4>({ea0, ea1, eb0, eb1}, gr::test::random_rotation(seed),
+                                    Vector3d(0.1, -0.2, 0.3));
   CHECK(gr::edge_edge_distance_type(x[0], x[1], x[2], x[3]) == expected);
   check_edge_edge(x);
 }
@@ -110,8 +111,9 @@ TEST_CASE("nearly parallel edges never use the line-line case", "[distance][grad
   const double start = GENERATE(-0.5, -1.5, 0.999);
   const Vector3d direction(std::cos(angle), std::sin(angle), 0.0);
   const Vector3d eb0(start, 0.0, height);
-  const auto x = gr::test::moved<4>({Vector3d(-1, 0, 0), Vector3d(1, 0, 0), eb0, eb0 + 1.2 * direction},
-                                    gr::test::random_rotation(41), Vector3d(0.2, 0.2, 0.2));
+  const auto x =
+      gr::test::moved<4>({Vector3d(-1, 0, 0), Vector3d(1, 0, 0), eb0, eb0 + 1.2 * direction},
+                         gr::test::random_rotation(41), Vector3d(0.2, 0.2, 0.2));
   CAPTURE(angle, height, start);
   CHECK(gr::edge_edge_distance_type(x[0], x[1], x[2], x[3]) != EdgeEdgeDistanceType::EA_EB);
   check_edge_edge(x);

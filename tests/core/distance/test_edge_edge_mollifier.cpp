@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "core/distance/edge_edge_mollifier.hpp"
 #include "core/distance/distance_test_support.hpp"
+#include "core/distance/edge_edge_mollifier.hpp"
 
 using gr::Vector3d;
 
@@ -26,9 +26,9 @@ TEST_CASE("edge-edge mollifier derivatives", "[distance][mollifier][grad]") {
                                      Vector3d(1, 0, 0.1)};
   const double eps = gr::edge_edge_mollifier_threshold(rest[0], rest[1], rest[2], rest[3]);
   const Vector3d eb0(-0.5, offset, 0.2);
-  const auto x = gr::test::moved<4>(
-      {Vector3d(-1, 0, 0), Vector3d(1, 0, 0), eb0, eb0 + 1.5 * Vector3d(std::cos(angle), std::sin(angle), 0)},
-      gr::test::random_rotation(51), Vector3d(0.1, 0.1, 0.1));
+  const auto x = gr::test::moved<4>({Vector3d(-1, 0, 0), Vector3d(1, 0, 0), eb0,
+                                     eb0 + 1.5 * Vector3d(std::cos(angle), std::sin(angle), 0)},
+                                    gr::test::random_rotation(51), Vector3d(0.1, 0.1, 0.1));
   CAPTURE(angle, offset);
   const auto value = [eps](const Eigen::VectorXd& v) {
     const auto y = gr::test::unstack<4>(v);

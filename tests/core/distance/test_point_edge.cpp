@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "core/distance/point_edge_distance.hpp"
 #include "core/distance/distance_test_support.hpp"
+#include "core/distance/point_edge_distance.hpp"
 
 using gr::PointEdgeDistanceType;
 using gr::Vector3d;
@@ -69,8 +69,9 @@ TEST_CASE("point-edge distance in every closest-feature region", "[distance][gra
 TEST_CASE("point-edge distance on region boundaries", "[distance][grad]") {
   const double offset = GENERATE(0.0, 1e-12, -1e-12);
   const double along = GENERATE(0.0, 1.0);
-  const auto x = gr::test::moved<3>({Vector3d(along + offset, 0.4, 0.1), Vector3d(0, 0, 0), Vector3d(1, 0, 0)},
-                                    gr::test::random_rotation(5), Vector3d(0.1, 0.2, 0.3));
+  const auto x =
+      gr::test::moved<3>({Vector3d(along + offset, 0.4, 0.1), Vector3d(0, 0, 0), Vector3d(1, 0, 0)},
+                         gr::test::random_rotation(5), Vector3d(0.1, 0.2, 0.3));
   CAPTURE(offset, along);
   check_point_edge(x);
 }

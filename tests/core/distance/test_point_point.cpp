@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "core/distance/point_point_distance.hpp"
 #include "core/distance/distance_test_support.hpp"
+#include "core/distance/point_point_distance.hpp"
 
 using gr::Vector3d;
 

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "core/distance/point_triangle_distance.hpp"
 #include "core/distance/distance_test_support.hpp"
+#include "core/distance/point_triangle_distance.hpp"
 
 using gr::PointTriangleDistanceType;
 using gr::Vector3d;
@@ -80,17 +80,19 @@ TEST_CASE("point-triangle distance in every closest-feature region", "[distance]
     p = Vector3d(1.0 + 1e-9, -1e-9, offset);
     expected = T::P_T1;
   }
-  const auto x = gr::test::moved<4>({p, t0, t1, t2}, gr::test::random_rotation(seed), Vector3d(0.2, 0.1, -0.3));
+  const auto x = gr::test::moved<4>({p, t0, t1, t2}, gr::test::random_rotation(seed),
+                                    Vector3d(0.2, 0.1, -0.3));
   CHECK(gr::point_triangle_distance_type(x[0], x[1], x[2], x[3]) == expected);
   check_point_triangle(x);
 }
 
 TEST_CASE("point-triangle distance on region boundaries", "[distance][grad]") {
   const double offset = GENERATE(0.0, 1e-12, -1e-12);
-  const Vector3d p = GENERATE(Vector3d(0.0, 0.5, 0.3), Vector3d(0.5, 0.0, -0.2), Vector3d(0.0, 0.0, 0.3),
-                              Vector3d(1.0, 0.0, 0.1), Vector3d(0.5, 0.5, 0.2));
-  const auto x = gr::test::moved<4>({Vector3d(p.x() + offset, p.y() - offset, p.z()), Vector3d(0, 0, 0),
-                                     Vector3d(1, 0, 0), Vector3d(0, 1, 0)},
+  const Vector3d p =
+      GENERATE(Vector3d(0.0, 0.5, 0.3), Vector3d(0.5, 0.0, -0.2), Vector3d(0.0, 0.0, 0.3),
+               Vector3d(1.0, 0.0, 0.1), Vector3d(0.5, 0.5, 0.2));
+  const auto x = gr::test::moved<4>({Vector3d(p.x() + offset, p.y() - offset, p.z()),
+                                     Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)},
                                     gr::test::random_rotation(7), Vector3d(0.1, 0.2, 0.3));
   CAPTURE(offset, p.transpose());
   check_point_triangle(x);
@@ -100,7 +102,8 @@ TEST_CASE("degenerate triangles are measured as their sides", "[distance][grad]"
   const double offset = GENERATE(0.0, 1e-12, -1e-12);
   const Vector3d p(0.4, 0.3, 0.2);
   // Collinear corners, and a sliver whose area is below the parallel threshold.
-  const Vector3d t2 = GENERATE(Vector3d(2.0, 0.0, 0.0), Vector3d(0.5, 1e-10, 0.0), Vector3d(1.0, 0.0, 0.0));
+  const Vector3d t2 =
+      GENERATE(Vector3d(2.0, 0.0, 0.0), Vector3d(0.5, 1e-10, 0.0), Vector3d(1.0, 0.0, 0.0));
   const auto x = gr::test::moved<4>({p, Vector3d(0, 0, 0), Vector3d(1, 0, offset), t2},
                                     gr::test::random_rotation(9), Vector3d::Zero());
   CAPTURE(offset, t2.transpose());

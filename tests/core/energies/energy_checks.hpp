@@ -35,7 +35,8 @@ inline void check_position_energy(const EnergyTerm& energy, const Eigen::VectorX
   const Eigen::MatrixXd H = energy.hessian(unflatten(x), t, false);
   CHECK(fd_matches(H, fd_hessian(grad, x), tolerance));
   const Eigen::MatrixXd P = energy.hessian(unflatten(x), t, true);
-  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(P).eigenvalues().minCoeff() >= -1e-12 * P.norm());
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(P).eigenvalues().minCoeff() >=
+        -1e-12 * P.norm());
 }
 
 }  // namespace gr::test

@@ -4,10 +4,10 @@
 
 #include <Eigen/Dense>
 
-#include "core/energies/fit_energy.hpp"
-#include "core/test_shapes.hpp"
 #include "core/energies/analytic_fields.hpp"
 #include "core/energies/energy_checks.hpp"
+#include "core/energies/fit_energy.hpp"
+#include "core/test_shapes.hpp"
 
 using namespace gr;
 
@@ -31,7 +31,8 @@ TEST_CASE("triangle quadrature rules integrate polynomials exactly", "[energies]
   CHECK_THROWS_AS(TriangleQuadrature::with_points(4), std::invalid_argument);
 }
 
-TEST_CASE("fit energy: gradient and Hessian match finite differences", "[energies][fit][grad][hess]") {
+TEST_CASE("fit energy: gradient and Hessian match finite differences",
+          "[energies][fit][grad][hess]") {
   const int samples = GENERATE(1, 3, 6);
   CAPTURE(samples);
   // A sphere patch partly outside a unit sphere: some points with phi > 0, some inside.
@@ -42,8 +43,8 @@ TEST_CASE("fit energy: gradient and Hessian match finite differences", "[energie
   CHECK(energy.fit_face_count() == rest.faces.rows());
 
   std::srand(11);
-  const Eigen::VectorXd x = test::flatten(rest.vertices) +
-                            0.02 * Eigen::VectorXd::Random(rest.vertices.size());
+  const Eigen::VectorXd x =
+      test::flatten(rest.vertices) + 0.02 * Eigen::VectorXd::Random(rest.vertices.size());
   test::check_position_energy(energy, x, 1e-5);
 }
 
@@ -64,7 +65,8 @@ TEST_CASE("fit energy: zero inside the avatar; the exact value on a flat face", 
   CHECK(energy.value(inside, 1.0) == 0.0);
 }
 
-TEST_CASE("fit energy: faces with all three vertices listed as no-fit are left out", "[energies][fit]") {
+TEST_CASE("fit energy: faces with all three vertices listed as no-fit are left out",
+          "[energies][fit]") {
   const TriangleMesh rest = test::curved_grid(3);  // 8 faces
   const test::SphereField field(Vector3d(0, 0, -5), 1.0);
   const FitEnergy some(rest, {0, 1, 3, 4}, field, 1, DofLayout{9});
@@ -92,7 +94,8 @@ class CountingField : public DistanceField {
 
 }  // namespace
 
-TEST_CASE("fit energy: one sampling per iterate serves gradient, Hessian and value", "[energies][fit]") {
+TEST_CASE("fit energy: one sampling per iterate serves gradient, Hessian and value",
+          "[energies][fit]") {
   const TriangleMesh rest = test::icosphere(1, 1.05);
   const test::SphereField sphere(Vector3d(0.1, 0.0, 0.0), 1.0);
   const CountingField field(sphere);
@@ -122,8 +125,10 @@ TEST_CASE("fit energy: one sampling per iterate serves gradient, Hessian and val
   CHECK(fresh.value(moved, 1.0) == at_moved);
   fresh.gradient(rest.vertices, 1.0, g_fresh);
   CHECK(g_fresh == g);
-  CHECK((Eigen::MatrixXd(fresh.hessian(rest.vertices, 1.0, true)) - Eigen::MatrixXd(H)).norm() == 0.0);
+  CHECK((Eigen::MatrixXd(fresh.hessian(rest.vertices, 1.0, true)) - Eigen::MatrixXd(H)).norm() ==
+        0.0);
   const Eigen::SparseMatrix<double> H_moved = cached.hessian(moved, 1.0, true);
   CHECK(field.count == 3 * points);
-  CHECK((Eigen::MatrixXd(fresh.hessian(moved, 1.0, true)) - Eigen::MatrixXd(H_moved)).norm() == 0.0);
+  CHECK((Eigen::MatrixXd(fresh.hessian(moved, 1.0, true)) - Eigen::MatrixXd(H_moved)).norm() ==
+        0.0);
 }

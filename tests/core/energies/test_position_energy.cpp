@@ -3,10 +3,10 @@
 #include <Eigen/Dense>
 
 #include "core/common/errors.hpp"
+#include "core/energies/energy_checks.hpp"
 #include "core/energies/position_energy.hpp"
 #include "core/mesh/boundary_loops.hpp"
 #include "core/test_shapes.hpp"
-#include "core/energies/energy_checks.hpp"
 
 using namespace gr;
 
@@ -22,7 +22,8 @@ MovingBone random_bone(int seed) {
 /// arms from 1, legs 0-9-10-11 and 0-12-13-14.
 MatrixX2i data_skeleton_bones() {
   MatrixX2i bones(14, 2);
-  bones << 0, 1, 1, 2, 1, 3, 3, 4, 4, 5, 1, 6, 6, 8, 7, 8, 0, 9, 9, 10, 10, 11, 0, 12, 12, 13, 13, 14;
+  bones << 0, 1, 1, 2, 1, 3, 3, 4, 4, 5, 1, 6, 6, 8, 7, 8, 0, 9, 9, 10, 10, 11, 0, 12, 12, 13, 13,
+      14;
   return bones;
 }
 
@@ -50,7 +51,9 @@ TEST_CASE("position energy: bone parameter derivatives match finite differences"
   CHECK(test::fd_matches(h, test::fd_hessian(ds, q), 1e-6));
 
   const PositionEnergy::Element element{0, bone, 0.2};
-  const auto e = [&](const Eigen::VectorXd& y) { return PositionEnergy::element_value(element, Local(y)); };
+  const auto e = [&](const Eigen::VectorXd& y) {
+    return PositionEnergy::element_value(element, Local(y));
+  };
   const auto de = [&](const Eigen::VectorXd& y) {
     Local ge;
     PositionEnergy::element_gradient(element, Local(y), ge);
@@ -62,8 +65,9 @@ TEST_CASE("position energy: bone parameter derivatives match finite differences"
   CHECK(test::fd_matches(h, test::fd_hessian(de, q), 1e-6));
 }
 
-TEST_CASE("position energy: zero at rest, assembled derivatives in (t, Vg) match finite differences",
-          "[energies][position][grad][hess]") {
+TEST_CASE(
+    "position energy: zero at rest, assembled derivatives in (t, Vg) match finite differences",
+    "[energies][position][grad][hess]") {
   const TriangleMesh cylinder = test::open_cylinder(8, 3, 0.3, -0.5, 0.5);
   const int n = static_cast<int>(cylinder.vertices.rows());
   const auto loops = boundary_loops(cylinder.faces);
@@ -78,8 +82,11 @@ TEST_CASE("position energy: zero at rest, assembled derivatives in (t, Vg) match
   CHECK(energy.value(cylinder.vertices, 0.0) == Approx(0.0).margin(1e-28));
 
   std::srand(5);
-  Eigen::VectorXd x = layout.pack(0.6, cylinder.vertices) + 0.05 * Eigen::VectorXd::Random(layout.dof_count());
-  const auto f = [&](const Eigen::VectorXd& y) { return energy.value(layout.garment(y), layout.t(y)); };
+  Eigen::VectorXd x =
+      layout.pack(0.6, cylinder.vertices) + 0.05 * Eigen::VectorXd::Random(layout.dof_count());
+  const auto f = [&](const Eigen::VectorXd& y) {
+    return energy.value(layout.garment(y), layout.t(y));
+  };
   const auto grad = [&](const Eigen::VectorXd& y) {
     Eigen::VectorXd g;
     energy.gradient(layout.garment(y), layout.t(y), g);

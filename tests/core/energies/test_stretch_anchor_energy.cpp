@@ -59,7 +59,8 @@ TEST_CASE("stretch energy: zero under rigid motion, derivatives match finite dif
   const StretchEnergy energy(c.rest, layout);
   REQUIRE(!energy.elements().empty());
 
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   MatrixX3d moved = c.rest.vertices * R.transpose();
   moved.rowwise() += Eigen::RowVector3d(1, -2, 0.5);
   CHECK(energy.value(moved, 1.0) == Approx(0.0).margin(1e-20));

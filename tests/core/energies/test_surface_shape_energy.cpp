@@ -2,15 +2,16 @@
 
 #include <Eigen/Dense>
 
-#include "core/energies/surface_shape_energy.hpp"
 #include "core/energies/energy_checks.hpp"
+#include "core/energies/surface_shape_energy.hpp"
 #include "core/test_shapes.hpp"
 
 using namespace gr;
 
 namespace {
 
-MatrixX3d rigidly_moved(const MatrixX3d& V, double angle, const Vector3d& axis, const Vector3d& shift) {
+MatrixX3d rigidly_moved(const MatrixX3d& V, double angle, const Vector3d& axis,
+                        const Vector3d& shift) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
   MatrixX3d out = V;
   for (Eigen::Index i = 0; i < V.rows(); ++i)
@@ -34,7 +35,8 @@ SurfaceShapeEnergy::LocalVector perturbed_corners(const TriangleMesh& rest,
                                                   const SurfaceShapeEnergy::Element& element,
                                                   double perturbation) {
   SurfaceShapeEnergy::LocalVector q;
-  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = rest.vertices.row(element.vertices[v]).transpose();
+  for (int v = 0; v < 4; ++v)
+    q.segment<3>(3 * v) = rest.vertices.row(element.vertices[v]).transpose();
   return q + perturbation * SurfaceShapeEnergy::LocalVector::Random();
 }
 
@@ -77,7 +79,8 @@ TEST_CASE("surface shape energy: assembled gradient and Hessian match finite dif
   CHECK(energy.elements().size() == 3 * 3 + 2 * 3 * 2);  // interior edges of a 4×4 grid
 
   std::srand(7);
-  const Eigen::VectorXd x = test::flatten(rest.vertices) + 0.1 * Eigen::VectorXd::Random(rest.vertices.size());
+  const Eigen::VectorXd x =
+      test::flatten(rest.vertices) + 0.1 * Eigen::VectorXd::Random(rest.vertices.size());
   test::check_position_energy(energy, x, 1e-6);
 }
 
@@ -89,7 +92,8 @@ TEST_CASE("surface shape energy: zero with zero gradient at rest and under rigid
   REQUIRE(!energy.elements().empty());
   const double angle = GENERATE(0.0, 0.4, 2.5);
   CAPTURE(angle);
-  const MatrixX3d moved = rigidly_moved(rest.vertices, angle, Vector3d(1, 2, -0.5), Vector3d(3, -1, 2));
+  const MatrixX3d moved =
+      rigidly_moved(rest.vertices, angle, Vector3d(1, 2, -0.5), Vector3d(3, -1, 2));
   Eigen::VectorXd g;
   energy.gradient(moved, 1.0, g);
   CHECK(energy.value(moved, 1.0) <= 1e-24);
@@ -133,9 +137,10 @@ TEST_CASE("surface shape energy: the t-free layout shifts garment dofs by one",
   CHECK(H_free.row(0).norm() == 0.0);
 }
 
-TEST_CASE("surface shape energy: the element's PSD Hessian is the exact one plus a PSD "
-          "rank-two term, or Gauss–Newton near rest",
-          "[energies][surface][hess]") {
+TEST_CASE(
+    "surface shape energy: the element's PSD Hessian is the exact one plus a PSD "
+    "rank-two term, or Gauss–Newton near rest",
+    "[energies][surface][hess]") {
   // Near rest the second-order part is negligible and dropped; further away the element
   // keeps the positive part of it, so the PSD Hessian exceeds the exact one by the
   // negative part: PSD, of rank two (±γρ, each twice, in the second-order part).

@@ -9,7 +9,8 @@ namespace gr::test {
 
 /// A sphere avatar of radius 1 (icosphere), shrunk to A0 = 0.5 A about its centre, inside a
 /// closed sphere garment of radius 0.9 (a coarser icosphere, turned so no vertex lines up).
-inline GarmentScene inflating_sphere_scene(int avatar_subdivisions = 2, int garment_subdivisions = 2) {
+inline GarmentScene inflating_sphere_scene(int avatar_subdivisions = 2,
+                                           int garment_subdivisions = 2) {
   GarmentScene scene;
   scene.avatar = icosphere(avatar_subdivisions, 1.0);
   scene.shrunk_avatar = 0.5 * scene.avatar.vertices;

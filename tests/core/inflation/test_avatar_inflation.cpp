@@ -29,7 +29,8 @@ double min_outside_distance(const TriangleMesh& convex, const Eigen::Ref<const M
 
 /// Smallest distance between the garment and the avatar (and the garment and itself) over
 /// pairs closer than `radius`, with the core's own distance code.
-double contact_distance(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& garment, double radius) {
+double contact_distance(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& garment,
+                        double radius) {
   const ContactMesh mesh = ContactMesh::build(scene.garment, scene.avatar, true);
   MatrixX3d V(mesh.vertex_count(), 3);
   V.topRows(garment.rows()) = garment;
@@ -86,8 +87,8 @@ TEST_CASE("avatar inflation: a round that leaves t < 0 (eta < 0) resets and reco
   RetargetParameters parameters;
   parameters.w_surf = 1e6;
   std::vector<InflationRound> rounds;
-  const InflationResult result =
-      inflate_avatar(scene, parameters, [&](const InflationRound& round) { rounds.push_back(round); });
+  const InflationResult result = inflate_avatar(
+      scene, parameters, [&](const InflationRound& round) { rounds.push_back(round); });
   INFO(result.message);
   REQUIRE(!rounds.empty());
   CHECK(rounds.front().t < 0.0);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "core/energies/energy_checks.hpp"
 #include "core/energies/analytic_fields.hpp"
+#include "core/energies/energy_checks.hpp"
 #include "core/inflation/garment_problem.hpp"
 #include "core/test_shapes.hpp"
 
@@ -62,7 +62,8 @@ TEST_CASE("garment problem: inflation derivatives over [t, Vg] with contact, AL 
     return static_cast<int>(i);
   }();
   for (int f = 0; f < scene.garment.faces.rows(); ++f)
-    if ((scene.garment.faces.row(f).array() != top).all()) open_faces.row(kept++) = scene.garment.faces.row(f);
+    if ((scene.garment.faces.row(f).array() != top).all())
+      open_faces.row(kept++) = scene.garment.faces.row(f);
   scene.garment.faces = open_faces.topRows(kept);
 
   RetargetParameters parameters;

@@ -11,16 +11,20 @@ namespace {
 
 struct MalformedCase {
   const char* file;
-  const char* reader;    ///< "obj", "skeleton", "skin" (2 joints × 3 vertices), "nofit" (10 vertices)
-  const char* message;   ///< expected part of the error
-  int line;              ///< expected line in the error, 0 when the whole file is at fault
+  const char* reader;  ///< "obj", "skeleton", "skin" (2 joints × 3 vertices), "nofit" (10 vertices)
+  const char* message;  ///< expected part of the error
+  int line;             ///< expected line in the error, 0 when the whole file is at fault
 };
 
 void read_with(const std::string& reader, const std::string& path) {
-  if (reader == "obj") gr::read_obj(path);
-  else if (reader == "skeleton") gr::read_skeleton(path);
-  else if (reader == "skin") gr::read_skin_weights(path, 2, 3);
-  else gr::read_vertex_list(path, 10);
+  if (reader == "obj")
+    gr::read_obj(path);
+  else if (reader == "skeleton")
+    gr::read_skeleton(path);
+  else if (reader == "skin")
+    gr::read_skin_weights(path, 2, 3);
+  else
+    gr::read_vertex_list(path, 10);
 }
 
 }  // namespace

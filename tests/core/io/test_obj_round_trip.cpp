@@ -17,9 +17,9 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }  // namespace
 
 TEST_CASE("shared garments and avatars survive read, write, read", "[io][obj]") {
-  const std::string file = GENERATE(as<std::string>{}, "garments/skirt/garment.obj",
-                                    "garments/puffer/garment.obj", "avatars/foxgirl/avatar.obj",
-                                    "avatars/goblin/avatar.obj");
+  const std::string file =
+      GENERATE(as<std::string>{}, "garments/skirt/garment.obj", "garments/puffer/garment.obj",
+               "avatars/foxgirl/avatar.obj", "avatars/goblin/avatar.obj");
   CAPTURE(file);
   const gr::ObjDocument first = gr::read_obj(gr::test::shared_data(file));
   const auto dir = gr::test::fresh_temp_dir("round_trip");

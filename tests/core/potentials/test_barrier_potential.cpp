@@ -5,11 +5,11 @@
 
 #include "core/barrier/barrier.hpp"
 #include "core/common/errors.hpp"
+#include "core/distance/distance_test_support.hpp"
 #include "core/distance/edge_edge_distance.hpp"
 #include "core/distance/edge_edge_mollifier.hpp"
 #include "core/distance/point_triangle_distance.hpp"
 #include "core/potentials/barrier_potential.hpp"
-#include "core/distance/distance_test_support.hpp"
 
 using gr::MatrixX3d;
 using gr::Vector3d;
@@ -49,8 +49,8 @@ Eigen::VectorXd as_vector(const MatrixX3d& V) {
 
 TEST_CASE("barrier potential derivatives match finite differences", "[potentials][barrier][grad]") {
   const double dhat = 0.5;
-  const Vector3d point = GENERATE(Vector3d(0.3, 0.3, 0.2), Vector3d(0.5, -0.2, 0.1), Vector3d(-0.1, -0.2, 0.25),
-                                  Vector3d(0.3, 0.3, 1e-3));
+  const Vector3d point = GENERATE(Vector3d(0.3, 0.3, 0.2), Vector3d(0.5, -0.2, 0.1),
+                                  Vector3d(-0.1, -0.2, 0.25), Vector3d(0.3, 0.3, 1e-3));
   // Crossing edges, edges inside the mollifier's band, and parallel edges.
   const double angle = GENERATE(1.2, 0.02, 1e-10, 0.0);
   const double height = GENERATE(0.3, 0.01);
@@ -61,7 +61,9 @@ TEST_CASE("barrier potential derivatives match finite differences", "[potentials
   const gr::Candidates c = pairs();
 
   const auto value = [&](const Eigen::VectorXd& x) { return potential.value(c, as_positions(x)); };
-  const auto gradient = [&](const Eigen::VectorXd& x) { return potential.gradient(c, as_positions(x)); };
+  const auto gradient = [&](const Eigen::VectorXd& x) {
+    return potential.gradient(c, as_positions(x));
+  };
   const Eigen::VectorXd x = as_vector(V);
   const Eigen::VectorXd g = gradient(x);
   const Eigen::MatrixXd H = potential.hessian(c, V, false);
@@ -74,7 +76,8 @@ TEST_CASE("barrier potential derivatives match finite differences", "[potentials
   // The value is the sum of the two pairs' barriers (edge–edge mollified).
   const double xhat = dhat * dhat;
   const auto row = [&](int i) -> Vector3d { return V.row(i).transpose(); };
-  const double pt = gr::barrier(gr::point_triangle_distance_sq(row(0), row(1), row(2), row(3)), xhat);
+  const double pt =
+      gr::barrier(gr::point_triangle_distance_sq(row(0), row(1), row(2), row(3)), xhat);
   const double eps = 1e-3 * 1.0 * 1.21;
   const double ee = gr::mollifier((row(5) - row(4)).cross(row(7) - row(6)).squaredNorm(), eps) *
                     gr::barrier(gr::edge_edge_distance_sq(row(4), row(5), row(6), row(7)), xhat);
@@ -91,7 +94,8 @@ TEST_CASE("barrier potential derivatives match finite differences", "[potentials
   if (raw.eigenvalues().minCoeff() >= 0.0) CHECK((projected - H).norm() <= 1e-12 * H.norm());
 }
 
-TEST_CASE("barrier potential outside dhat, at zero distance, and its minimum distance", "[potentials][barrier]") {
+TEST_CASE("barrier potential outside dhat, at zero distance, and its minimum distance",
+          "[potentials][barrier]") {
   const MatrixX3d V = scene(Vector3d(0.3, 0.3, 0.2), 1.2, 0.3);
   const gr::BarrierPotential potential(0.1, V);
   const gr::Candidates c = pairs();

@@ -216,10 +216,12 @@ TEST_CASE("projected Newton: stops when the energy stagnates over its window", "
     CHECK(result.message.find("energy fell") != std::string::npos);
     REQUIRE(result.iterations >= options.energy_window);
     const double last = energies.back();
-    const double before = energies[energies.size() - 1 - static_cast<std::size_t>(options.energy_window)];
+    const double before =
+        energies[energies.size() - 1 - static_cast<std::size_t>(options.energy_window)];
     CHECK(before - last <= options.energy_tolerance * std::abs(last));
     // One window earlier the decrease was still above the tolerance.
-    const double earlier = energies[energies.size() - 2 - static_cast<std::size_t>(options.energy_window)];
+    const double earlier =
+        energies[energies.size() - 2 - static_cast<std::size_t>(options.energy_window)];
     const double previous = energies[energies.size() - 2];
     CHECK(earlier - previous > options.energy_tolerance * std::abs(previous));
   }
@@ -279,9 +281,10 @@ TEST_CASE("linear solver: symbolic analysis reused within the analysed pattern; 
   }
 }
 
-TEST_CASE("linear solver: with pattern slack a few new entries keep the analysis and are "
-          "compensated on the diagonal",
-          "[solver][linear]") {
+TEST_CASE(
+    "linear solver: with pattern slack a few new entries keep the analysis and are "
+    "compensated on the diagonal",
+    "[solver][linear]") {
   const int n = 400;
   QuadraticProblem problem(n);
   Eigen::SparseMatrix<double> A;
@@ -380,8 +383,9 @@ TEST_CASE("projected Newton: a singular system is damped, never left to rounding
     CHECK(x.mean() == Approx(15.0).epsilon(1e-9));
     for (int i = 0; i + 1 < 20; ++i) CHECK(x[i + 1] - x[i] == Approx(1.0).epsilon(1e-8));
   }
-  SECTION("a force along the null space: every step is finite, bounded by the trust radius, "
-          "and lowers the energy") {
+  SECTION(
+      "a force along the null space: every step is finite, bounded by the trust radius, "
+      "and lowers the energy") {
     FreeChainProblem problem(20, 0.5);
     Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(20, 0.0, 19.0);
     ProjectedNewton newton;
@@ -389,8 +393,8 @@ TEST_CASE("projected Newton: a singular system is damped, never left to rounding
     newton.options().max_iterations = 20;
     const double start = problem.value(x);
     std::vector<double> energies;
-    const NewtonResult result =
-        newton.minimize(problem, x, [&](const NewtonProgress& step) { energies.push_back(step.energy); });
+    const NewtonResult result = newton.minimize(
+        problem, x, [&](const NewtonProgress& step) { energies.push_back(step.energy); });
     CHECK(result.status == SolverStatus::kIterationLimit);  // unbounded below: it never ends
     CHECK(result.gradient_descent_steps == 0);
     REQUIRE(energies.size() == 20);
@@ -403,9 +407,10 @@ TEST_CASE("projected Newton: a singular system is damped, never left to rounding
   }
 }
 
-TEST_CASE("projected Newton: the damping falls to its floor where the model predicts well and "
-          "rises where it does not",
-          "[solver][newton][damping]") {
+TEST_CASE(
+    "projected Newton: the damping falls to its floor where the model predicts well and "
+    "rises where it does not",
+    "[solver][newton][damping]") {
   SECTION("a quadratic: a few full steps, the damping falling") {
     QuadraticProblem problem(40);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(40);

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
@@ -31,7 +31,9 @@ const fs::path& bad_input_dir() {
     write_text(dir / "no_faces.obj", tri);
     write_text(dir / "one_vertex_face.obj", tri + "f 1\n");
     write_text(dir / "nonmanifold.obj", tri + "v 0 0 1\nv 0 -1 0\nf 1 2 3\nf 1 2 4\nf 1 2 5\n");
-    write_text(dir / "garbage.obj", std::string("\x7f" "ELF\x02\x01\x01\x00\x00\x00 binary", 20));
+    write_text(dir / "garbage.obj", std::string("\x7f"
+                                                "ELF\x02\x01\x01\x00\x00\x00 binary",
+                                                20));
     write_text(dir / "uv_nan.obj", tri + "vt nan 0\nf 1/1 2/1 3/1\n");
     write_text(dir / "skeleton_short.obj", "v 0 0 0\nv 0 0 1\nv 0 1 1\nl 1 2\nl 2 3\n");
     std::string moved_bones;
@@ -48,7 +50,8 @@ const fs::path& bad_input_dir() {
     const gr::TriangleMesh patch = gr::test::flat_patch(4, 0.25, 0.9375);
     std::string quads;
     for (Eigen::Index v = 0; v < patch.vertices.rows(); ++v)
-      quads += fmt::format("v {} {} {}\n", patch.vertices(v, 0), patch.vertices(v, 1), patch.vertices(v, 2));
+      quads += fmt::format("v {} {} {}\n", patch.vertices(v, 0), patch.vertices(v, 1),
+                           patch.vertices(v, 2));
     // Squares as quads, except the last two of the first row, one hexagon whose fan from
     // its first corner has no collinear triple.
     for (int j = 0; j < 4; ++j)
@@ -82,7 +85,8 @@ const fs::path& bad_input_dir() {
 
 /// Runs `retarget` with `case_args` and checks the single error line, the exit code and
 /// that no output file was left.
-void check_bad_input(std::vector<std::string> case_args, int exit_code, const std::string& message) {
+void check_bad_input(std::vector<std::string> case_args, int exit_code,
+                     const std::string& message) {
   const fs::path dir = bad_input_dir();
   const std::string garment = gr::test::project_file("tools/scenes/dress_form/garment.obj");
   const std::string avatar = gr::test::project_file("tools/scenes/dress_form/avatar.obj");
@@ -92,7 +96,9 @@ void check_bad_input(std::vector<std::string> case_args, int exit_code, const st
   bool has_out = false;
   for (std::string a : case_args) {
     for (const auto& [key, value] : {std::pair<std::string, std::string>{"{G}", garment},
-                                     {"{A}", avatar}, {"{D}", dir.string()}, {"{M}", malformed},
+                                     {"{A}", avatar},
+                                     {"{D}", dir.string()},
+                                     {"{M}", malformed},
                                      {"{S}", skeleton}}) {
       const auto at = a.find(key);
       if (at != std::string::npos) a.replace(at, key.size(), value);
@@ -119,121 +125,113 @@ void check_bad_input(std::vector<std::string> case_args, int exit_code, const st
 }  // namespace
 
 TEST_CASE("bad input: missing garment", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/nope.obj", "--avatar", "{A}"},
-                  2, "cannot open file");
+  check_bad_input({"--garment", "{D}/nope.obj", "--avatar", "{A}"}, 2, "cannot open file");
 }
 
 TEST_CASE("bad input: missing avatar", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{D}/nope.obj"},
-                  2, "cannot open file");
+  check_bad_input({"--garment", "{G}", "--avatar", "{D}/nope.obj"}, 2, "cannot open file");
 }
 
 TEST_CASE("bad input: empty garment", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/empty.obj", "--avatar", "{A}"},
-                  2, "file is empty");
+  check_bad_input({"--garment", "{M}/empty.obj", "--avatar", "{A}"}, 2, "file is empty");
 }
 
 TEST_CASE("bad input: blank avatar", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{M}/blank.obj"},
-                  2, "file is empty");
+  check_bad_input({"--garment", "{G}", "--avatar", "{M}/blank.obj"}, 2, "file is empty");
 }
 
 TEST_CASE("bad input: binary garment", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/binary.obj", "--avatar", "{A}"},
-                  2, "binary data");
+  check_bad_input({"--garment", "{M}/binary.obj", "--avatar", "{A}"}, 2, "binary data");
 }
 
 TEST_CASE("bad input: binary garbage avatar", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{D}/garbage.obj"},
-                  2, "binary data");
+  check_bad_input({"--garment", "{G}", "--avatar", "{D}/garbage.obj"}, 2, "binary data");
 }
 
 TEST_CASE("bad input: truncated OBJ", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/truncated_vertex.obj", "--avatar", "{A}"},
-                  2, "truncated_vertex.obj:5: vertex needs three coordinates");
+  check_bad_input({"--garment", "{M}/truncated_vertex.obj", "--avatar", "{A}"}, 2,
+                  "truncated_vertex.obj:5: vertex needs three coordinates");
 }
 
 TEST_CASE("bad input: NaN coordinate", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/nan_coordinate.obj", "--avatar", "{A}"},
-                  2, "nan_coordinate.obj:2: non-finite number");
+  check_bad_input({"--garment", "{M}/nan_coordinate.obj", "--avatar", "{A}"}, 2,
+                  "nan_coordinate.obj:2: non-finite number");
 }
 
 TEST_CASE("bad input: inf coordinate", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{M}/inf_coordinate.obj"},
-                  2, "inf_coordinate.obj:3: non-finite number");
+  check_bad_input({"--garment", "{G}", "--avatar", "{M}/inf_coordinate.obj"}, 2,
+                  "inf_coordinate.obj:3: non-finite number");
 }
 
 TEST_CASE("bad input: NaN texture coordinate", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/uv_nan.obj", "--avatar", "{A}"},
-                  2, "uv_nan.obj:4: non-finite number");
+  check_bad_input({"--garment", "{D}/uv_nan.obj", "--avatar", "{A}"}, 2,
+                  "uv_nan.obj:4: non-finite number");
 }
 
 TEST_CASE("bad input: malformed number", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/malformed_number.obj", "--avatar", "{A}"},
-                  2, "malformed number '1x'");
+  check_bad_input({"--garment", "{M}/malformed_number.obj", "--avatar", "{A}"}, 2,
+                  "malformed number '1x'");
 }
 
 TEST_CASE("bad input: index out of range", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/index_out_of_range.obj", "--avatar", "{A}"},
-                  2, "vertex index 4 out of range");
+  check_bad_input({"--garment", "{M}/index_out_of_range.obj", "--avatar", "{A}"}, 2,
+                  "vertex index 4 out of range");
 }
 
 TEST_CASE("bad input: index zero", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/index_zero.obj", "--avatar", "{A}"},
-                  2, "vertex index 0");
+  check_bad_input({"--garment", "{M}/index_zero.obj", "--avatar", "{A}"}, 2, "vertex index 0");
 }
 
 TEST_CASE("bad input: negative index out of range", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/negative_index_out_of_range.obj", "--avatar", "{A}"},
-                  2, "vertex index -4 out of range");
+  check_bad_input({"--garment", "{M}/negative_index_out_of_range.obj", "--avatar", "{A}"}, 2,
+                  "vertex index -4 out of range");
 }
 
 TEST_CASE("bad input: face with one vertex", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/one_vertex_face.obj", "--avatar", "{A}"},
-                  2, "face with 1 vertices");
+  check_bad_input({"--garment", "{D}/one_vertex_face.obj", "--avatar", "{A}"}, 2,
+                  "face with 1 vertices");
 }
 
 TEST_CASE("bad input: face with two vertices", "[cli][errors]") {
-  check_bad_input({"--garment", "{M}/face_two_vertices.obj", "--avatar", "{A}"},
-                  2, "face with 2 vertices");
+  check_bad_input({"--garment", "{M}/face_two_vertices.obj", "--avatar", "{A}"}, 2,
+                  "face with 2 vertices");
 }
 
 TEST_CASE("bad input: garment with no faces", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/no_faces.obj", "--avatar", "{A}"},
-                  2, "garment has no (non-degenerate) triangle");
+  check_bad_input({"--garment", "{D}/no_faces.obj", "--avatar", "{A}"}, 2,
+                  "garment has no (non-degenerate) triangle");
 }
 
 TEST_CASE("bad input: non-manifold garment", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/nonmanifold.obj", "--avatar", "{A}"},
-                  2, "non-manifold");
+  check_bad_input({"--garment", "{D}/nonmanifold.obj", "--avatar", "{A}"}, 2, "non-manifold");
 }
 
 TEST_CASE("bad input: skeletons with different joint counts", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}", "--target-skeleton",
-                  "{D}/skeleton_short.obj"},
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}",
+                   "--target-skeleton", "{D}/skeleton_short.obj"},
                   2, "3 joints, source skeleton has 15");
 }
 
 TEST_CASE("bad input: skeletons with different bones", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}", "--target-skeleton",
-                  "{D}/skeleton_other_bones.obj"},
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}",
+                   "--target-skeleton", "{D}/skeleton_other_bones.obj"},
                   2, "bones differ");
 }
 
 TEST_CASE("bad input: source skeleton alone", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}"},
-                  2, "requires");
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}"}, 2,
+                  "requires");
 }
 
 TEST_CASE("bad input: skeleton without bones", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{M}/skeleton_no_bones.obj",
-                  "--target-skeleton", "{S}"},
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton",
+                   "{M}/skeleton_no_bones.obj", "--target-skeleton", "{S}"},
                   2, "no bones");
 }
 
 TEST_CASE("bad input: skin weights of the wrong shape", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}", "--target-skeleton",
-                  "{S}", "--skin-weights", "{M}/skin_ragged.txt"},
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--source-skeleton", "{S}",
+                   "--target-skeleton", "{S}", "--skin-weights", "{M}/skin_ragged.txt"},
                   2, "columns, expected one per avatar vertex");
 }
 
@@ -243,34 +241,32 @@ TEST_CASE("bad input: skin weights without skeletons", "[cli][errors]") {
 }
 
 TEST_CASE("bad input: negative no-fit id", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--no-fit", "{M}/nofit_negative.txt"},
-                  2, "negative vertex id -3");
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--no-fit", "{M}/nofit_negative.txt"}, 2,
+                  "negative vertex id -3");
 }
 
 TEST_CASE("bad input: no-fit id out of range", "[cli][errors]") {
   check_bad_input({"--garment", "{M}/index_zero.obj", "--avatar", "{A}", "--no-fit",
-                  "{M}/nofit_out_of_range.txt"},
+                   "{M}/nofit_out_of_range.txt"},
                   2, "vertex index 0");
 }
 
 TEST_CASE("bad input: no-fit garbage", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--no-fit", "{M}/nofit_garbage.txt"},
-                  2, "malformed integer 'two'");
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--no-fit", "{M}/nofit_garbage.txt"}, 2,
+                  "malformed integer 'two'");
 }
 
 TEST_CASE("bad input: unknown option", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--frobnicate"},
-                  2, "frobnicate");
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--frobnicate"}, 2, "frobnicate");
 }
 
 TEST_CASE("bad input: unknown quality", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--quality", "best"},
-                  2, "best");
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--quality", "best"}, 2, "best");
 }
 
 TEST_CASE("bad input: output folder is a file", "[cli][errors]") {
-  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--out", "{D}/a_file/out"},
-                  5, "cannot create output folder");
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--out", "{D}/a_file/out"}, 5,
+                  "cannot create output folder");
 }
 
 TEST_CASE("bad input: output folder under /proc cannot be created", "[cli][errors]") {
@@ -279,18 +275,19 @@ TEST_CASE("bad input: output folder under /proc cannot be created", "[cli][error
 }
 
 TEST_CASE("bad input: garment that intersects itself", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/self_crossing.obj", "--avatar", "{D}/sphere.obj"},
-                  2, "self_crossing.obj: garment intersects itself (");
+  check_bad_input({"--garment", "{D}/self_crossing.obj", "--avatar", "{D}/sphere.obj"}, 2,
+                  "self_crossing.obj: garment intersects itself (");
 }
 
 TEST_CASE("bad input: quads and n-gons are triangulated with a warning and the run proceeds",
           "[cli][errors]") {
   const fs::path dir = bad_input_dir();
   const fs::path out = dir / "quads_out";
-  const gr::test::CliRun run = gr::test::run_cli(
-      {"retarget", "--garment", (dir / "quads.obj").string(), "--avatar", (dir / "sphere.obj").string(),
-       "--out", out.string(), "--quality", "fast", "--voxel-size", "0.05", "--eps-tol", "1e-2"},
-      "bad_input_quads");
+  const gr::test::CliRun run =
+      gr::test::run_cli({"retarget", "--garment", (dir / "quads.obj").string(), "--avatar",
+                         (dir / "sphere.obj").string(), "--out", out.string(), "--quality", "fast",
+                         "--voxel-size", "0.05", "--eps-tol", "1e-2"},
+                        "bad_input_quads");
   CAPTURE(run.err, run.out);
   CHECK(run.exit_code == gr::kExitSuccess);
   CHECK_THAT(run.out, Catch::StartsWith("certified"));
@@ -298,7 +295,8 @@ TEST_CASE("bad input: quads and n-gons are triangulated with a warning and the r
   for (const auto& line : gr::test::lines_of(run.err))
     if (line.find("warning") != std::string::npos) {
       ++warnings;
-      CHECK_THAT(line, Catch::Contains("quads.obj") && Catch::Contains("15 polygons with more than 3 vertices triangulated"));
+      CHECK_THAT(line, Catch::Contains("quads.obj") &&
+                           Catch::Contains("15 polygons with more than 3 vertices triangulated"));
     }
   CHECK(warnings == 1);
   CHECK(fs::exists(out / "garment.obj"));
@@ -308,18 +306,18 @@ TEST_CASE("bad input: quads and n-gons are triangulated with a warning and the r
 TEST_CASE("bad input: garment through the avatar's core, no shrink frees it", "[cli][errors]") {
   const fs::path dir = bad_input_dir();
   const fs::path out = dir / "no_shrink_out";
-  const gr::test::CliRun run = gr::test::run_cli(
-      {"retarget", "--garment", (dir / "through_centre.obj").string(), "--avatar",
-       (dir / "sphere.obj").string(), "--out", out.string(), "--quality", "fast", "--voxel-size",
-       "0.05", "--quiet"},
-      "bad_input_no_shrink");
+  const gr::test::CliRun run =
+      gr::test::run_cli({"retarget", "--garment", (dir / "through_centre.obj").string(), "--avatar",
+                         (dir / "sphere.obj").string(), "--out", out.string(), "--quality", "fast",
+                         "--voxel-size", "0.05", "--quiet"},
+                        "bad_input_no_shrink");
   CAPTURE(run.err, run.out);
   CHECK(run.exit_code == gr::kExitNoValidShrink);
   CHECK(run.err.empty());
   const auto lines = gr::test::lines_of(run.out);
   REQUIRE(lines.size() == 1);
-  CHECK_THAT(lines[0], Catch::StartsWith("no valid shrink: ") &&
-                           Catch::Contains("in the garment's frame"));
+  CHECK_THAT(lines[0],
+             Catch::StartsWith("no valid shrink: ") && Catch::Contains("in the garment's frame"));
   CHECK(fs::exists(out / "report.json"));
   CHECK_FALSE(fs::exists(out / "garment.obj"));
   CHECK_FALSE(fs::exists(out / "certificate.json"));

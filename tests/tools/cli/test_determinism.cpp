@@ -60,7 +60,8 @@ void check_same_bytes_everywhere(const std::string& scene, const std::vector<std
     std::vector<std::string> run_args = args;
     run_args.insert(run_args.end(), {"--quiet", "--out", out.string()});
     run_args.insert(run_args.end(), variant.extra_args.begin(), variant.extra_args.end());
-    const gr::test::CliRun run = gr::test::run_cli(run_args, "determinism_" + scene, variant.environment);
+    const gr::test::CliRun run =
+        gr::test::run_cli(run_args, "determinism_" + scene, variant.environment);
     INFO(scene << ", " << variant.name << ": " << run.err);
     REQUIRE(run.exit_code == 0);
     const std::string garment = gr::test::read_text(out / "garment.obj");
@@ -79,18 +80,17 @@ TEST_CASE("the bundled scene gives the same garment bytes under every BLAS kerne
   const std::string scene = "tools/scenes/dress_form/";
   check_same_bytes_everywhere(
       "dress_form", {"retarget", "--garment", gr::test::project_file(scene + "garment.obj"),
-                     "--avatar", gr::test::project_file(scene + "avatar.obj"),
-                     "--no-fit", gr::test::project_file(scene + "no-fit.txt")});
+                     "--avatar", gr::test::project_file(scene + "avatar.obj"), "--no-fit",
+                     gr::test::project_file(scene + "no-fit.txt")});
 }
 
 TEST_CASE("foxgirl_skirt gives the same garment bytes under every BLAS kernel and thread count",
           "[cli][determinism]") {
   check_same_bytes_everywhere(
       "foxgirl_skirt",
-      {"retarget", "--skirt",
-       "--garment", gr::test::shared_data("garments/skirt/garment.obj"),
-       "--no-fit", gr::test::shared_data("garments/skirt/no-fit.txt"),
-       "--source-skeleton", gr::test::shared_data("garments/skirt/skeleton.obj"),
-       "--avatar", gr::test::shared_data("avatars/foxgirl/avatar.obj"),
-       "--target-skeleton", gr::test::shared_data("avatars/foxgirl/skeleton.obj")});
+      {"retarget", "--skirt", "--garment", gr::test::shared_data("garments/skirt/garment.obj"),
+       "--no-fit", gr::test::shared_data("garments/skirt/no-fit.txt"), "--source-skeleton",
+       gr::test::shared_data("garments/skirt/skeleton.obj"), "--avatar",
+       gr::test::shared_data("avatars/foxgirl/avatar.obj"), "--target-skeleton",
+       gr::test::shared_data("avatars/foxgirl/skeleton.obj")});
 }

@@ -2,14 +2,14 @@
 #include <fstream>
 #include <string>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
-#include "tools/report_page/page_test_support.hpp"
 #include "test_support.hpp"
 #include "tools/report_page/page_colours.hpp"
+#include "tools/report_page/page_test_support.hpp"
 #include "tools/report_page/rgb_image.hpp"
 
 namespace fs = std::filesystem;
@@ -41,11 +41,12 @@ std::size_t heat_pixels(const gr::RgbImage& image) {
 TEST_CASE("retarget writes report.html and, with --png, front and side stills; validate --html",
           "[tools][cli][report_page]") {
   const fs::path out = gr::test::fresh_temp_dir("cli_report_page");
-  const gr::test::CliRun run = gr::test::run_cli(
-      {"retarget", "--garment", gr::test::project_file(kScene + "garment.obj"), "--avatar",
-       gr::test::project_file(kScene + "avatar.obj"), "--no-fit", gr::test::project_file(kScene + "no-fit.txt"),
-       "--quality", "fast", "--quiet", "--png", "--out", (out / "run").string()},
-      "report_page");
+  const gr::test::CliRun run =
+      gr::test::run_cli({"retarget", "--garment", gr::test::project_file(kScene + "garment.obj"),
+                         "--avatar", gr::test::project_file(kScene + "avatar.obj"), "--no-fit",
+                         gr::test::project_file(kScene + "no-fit.txt"), "--quality", "fast",
+                         "--quiet", "--png", "--out", (out / "run").string()},
+                        "report_page");
   CAPTURE(run.out, run.err);
   REQUIRE(run.exit_code == 0);
   const fs::path dir = out / "run";
@@ -53,10 +54,10 @@ TEST_CASE("retarget writes report.html and, with --png, front and side stills; v
   SECTION("the page holds the run's numbers, the input and output garments and the no-fit faces") {
     const std::string html = gr::test::read_text(dir / "report.html");
     const nlohmann::json report = read_json(dir / "report.json");
-    CHECK(html.find(fmt::format("<td>{:.3g} avatar units</td>", report["fit_error"]["mean"].get<double>())) !=
-          std::string::npos);
-    CHECK(html.find(fmt::format("<th>total</th><td>{:.2f} s</td>", report["seconds"]["total"].get<double>())) !=
-          std::string::npos);
+    CHECK(html.find(fmt::format("<td>{:.3g} avatar units</td>",
+                                report["fit_error"]["mean"].get<double>())) != std::string::npos);
+    CHECK(html.find(fmt::format("<th>total</th><td>{:.2f} s</td>",
+                                report["seconds"]["total"].get<double>())) != std::string::npos);
     CHECK(html.find("class=\"verdict pass\"") != std::string::npos);
     const nlohmann::json scene = gr::test::scene_of(html);
     const auto& garment = scene["garments"][0];

@@ -60,8 +60,9 @@ TEST_CASE("validate: a clean garment exits 0 with a one-line summary", "[tools][
   const auto dir = gr::test::fresh_temp_dir("cli_validate_clean");
   const std::string avatar = write_text(dir / "avatar.obj", kAvatar);
   const std::string garment = write_text(dir / "garment.obj", kAbove);
-  const Run run = validate(dir, "--garment " + garment + " --avatar " + avatar + " --threshold 0.6 --report \"" +
-                                    (dir / "report.json").string() + "\"");
+  const Run run =
+      validate(dir, "--garment " + garment + " --avatar " + avatar +
+                        " --threshold 0.6 --report \"" + (dir / "report.json").string() + "\"");
   CHECK(run.exit_code == 0);
   CHECK(line_count(run.out) == 1);
   CHECK(run.out.rfind("certified:", 0) == 0);
@@ -80,8 +81,9 @@ TEST_CASE("validate: intersections exit 1, with report and marks", "[tools][cli]
   const std::string garment = write_text(dir / "garment.obj", kPierce);
   const auto report_path = dir / "report.json";
   const auto marks_path = dir / "marks.obj";
-  const Run run = validate(dir, "--garment " + garment + " --avatar " + avatar + " --report \"" +
-                                    report_path.string() + "\" --marks \"" + marks_path.string() + "\"");
+  const Run run =
+      validate(dir, "--garment " + garment + " --avatar " + avatar + " --report \"" +
+                        report_path.string() + "\" --marks \"" + marks_path.string() + "\"");
   CHECK(run.exit_code == 1);
   CHECK(line_count(run.out) == 1);
   CHECK(run.out.rfind("NOT certified", 0) == 0);
@@ -89,7 +91,8 @@ TEST_CASE("validate: intersections exit 1, with report and marks", "[tools][cli]
   const auto report = nlohmann::json::parse(slurp(report_path));
   CHECK(report["certified"] == false);
   CHECK(report["tool"]["version"] == GR_VERSION);
-  CHECK(report["inputs"]["garments"][0]["sha256"] == gr::sha256_of_file((dir / "garment.obj").string()));
+  CHECK(report["inputs"]["garments"][0]["sha256"] ==
+        gr::sha256_of_file((dir / "garment.obj").string()));
   CHECK(report["inputs"]["avatar"]["sha256"] == gr::sha256_of_file((dir / "avatar.obj").string()));
   CHECK(report["counts"]["garment_avatar_intersections"] == 1);
   CHECK(report["garments"][0]["avatar_intersections"]["pairs"] == nlohmann::json::array({{1, 0}}));
@@ -107,8 +110,10 @@ TEST_CASE("validate: layers are checked against each other", "[tools][cli][valid
   const std::string avatar = write_text(dir / "avatar.obj", kAvatar);
   const std::string inner = write_text(dir / "inner.obj", kAbove);
   const std::string outer = write_text(dir / "outer.obj", kHigher);
-  CHECK(validate(dir, "--garment " + inner + " --garment " + outer + " --avatar " + avatar).exit_code == 0);
-  CHECK(validate(dir, "--garment " + inner + " --garment " + inner + " --avatar " + avatar).exit_code == 1);
+  CHECK(validate(dir, "--garment " + inner + " --garment " + outer + " --avatar " + avatar)
+            .exit_code == 0);
+  CHECK(validate(dir, "--garment " + inner + " --garment " + inner + " --avatar " + avatar)
+            .exit_code == 1);
 }
 
 TEST_CASE("validate: bad input exits 2 with one error line", "[tools][cli][validate]") {
@@ -116,7 +121,8 @@ TEST_CASE("validate: bad input exits 2 with one error line", "[tools][cli][valid
   const std::string avatar = write_text(dir / "avatar.obj", kAvatar);
   const std::string garment = write_text(dir / "garment.obj", kAbove);
   SECTION("missing garment file") {
-    const Run run = validate(dir, "--garment \"" + (dir / "missing.obj").string() + "\" --avatar " + avatar);
+    const Run run =
+        validate(dir, "--garment \"" + (dir / "missing.obj").string() + "\" --avatar " + avatar);
     CHECK(run.exit_code == 2);
     CHECK(line_count(run.err) == 1);
     CHECK(run.err.find("missing.obj") != std::string::npos);
@@ -128,11 +134,10 @@ TEST_CASE("validate: bad input exits 2 with one error line", "[tools][cli][valid
     CHECK(run.exit_code == 2);
     CHECK(line_count(run.err) == 1);
   }
-  SECTION("no avatar") {
-    CHECK(validate(dir, "--garment " + garment).exit_code == 2);
-  }
+  SECTION("no avatar") { CHECK(validate(dir, "--garment " + garment).exit_code == 2); }
   SECTION("negative threshold") {
-    CHECK(validate(dir, "--garment " + garment + " --avatar " + avatar + " --threshold -1").exit_code == 2);
+    CHECK(validate(dir, "--garment " + garment + " --avatar " + avatar + " --threshold -1")
+              .exit_code == 2);
   }
   SECTION("nothing written when the input is bad") {
     validate(dir, "--garment \"" + (dir / "missing.obj").string() + "\" --avatar " + avatar +
@@ -146,8 +151,8 @@ namespace {
 /// The bundled scene's garment with every `v` line mapped by an affine map about
 /// `centre`: scaled by `scale`, then its y squeezed by `squeeze` (an affine map keeps it
 /// free of self-intersection, so only the shape check can object).
-std::string crushed_copy(const std::filesystem::path& path, const std::string& source,
-                         double scale, double squeeze) {
+std::string crushed_copy(const std::filesystem::path& path, const std::string& source, double scale,
+                         double squeeze) {
   std::istringstream in(slurp(source));
   std::ostringstream out;
   std::string line;
@@ -160,7 +165,8 @@ std::string crushed_copy(const std::filesystem::path& path, const std::string& s
     std::istringstream fields(line.substr(2));
     double p[3];
     fields >> p[0] >> p[1] >> p[2];
-    for (int k = 0; k < 3; ++k) p[k] = centre[k] + scale * (k == 1 ? squeeze : 1.0) * (p[k] - centre[k]);
+    for (int k = 0; k < 3; ++k)
+      p[k] = centre[k] + scale * (k == 1 ? squeeze : 1.0) * (p[k] - centre[k]);
     out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
   }
   return write_text(path, out.str());
@@ -176,17 +182,17 @@ TEST_CASE("validate --source: a crushed garment exits 7, an unchanged one 0",
   const std::string crushed = crushed_copy(dir / "crushed.obj", source, 0.3, 0.3);
   const std::string quoted_source = "\"" + source + "\"";
 
-  const Run same = validate(dir, "--garment " + quoted_source + " --avatar " + avatar +
-                                     " --source " + quoted_source + " --report \"" +
-                                     (dir / "same.json").string() + "\"");
+  const Run same =
+      validate(dir, "--garment " + quoted_source + " --avatar " + avatar + " --source " +
+                        quoted_source + " --report \"" + (dir / "same.json").string() + "\"");
   CHECK(same.exit_code == 0);
   const auto same_report = nlohmann::json::parse(slurp(dir / "same.json"));
   CHECK(same_report["garments"][0]["shape"]["scale"] == 1.0);
   CHECK(same_report["garments"][0]["shape"]["within_thresholds"] == true);
 
-  const Run flagged = validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " +
-                                        quoted_source + " --report \"" +
-                                        (dir / "crushed.json").string() + "\"");
+  const Run flagged =
+      validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " + quoted_source +
+                        " --report \"" + (dir / "crushed.json").string() + "\"");
   CHECK(flagged.exit_code == 7);
   CHECK(flagged.out.find("SHAPE CHANGED") != std::string::npos);
   CHECK(flagged.err.find("scale") != std::string::npos);
@@ -202,7 +208,8 @@ TEST_CASE("validate --source: a crushed garment exits 7, an unchanged one 0",
                                     quoted_source + " --shape-check off");
   CHECK(off.exit_code == 0);
 
-  const Run wrong = validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " + avatar);
+  const Run wrong =
+      validate(dir, "--garment " + crushed + " --avatar " + avatar + " --source " + avatar);
   CHECK(wrong.exit_code == 2);
   CHECK(wrong.err.find("not the source") != std::string::npos);
 }

@@ -26,8 +26,8 @@ inline void write_mesh_obj(const std::filesystem::path& path, const TriangleMesh
     out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2)
         << '\n';
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' ' << mesh.faces(f, 2) + 1
-        << '\n';
+    out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' '
+        << mesh.faces(f, 2) + 1 << '\n';
 }
 
 /// The faces of `mesh` whose three corners satisfy `keep`, with unused vertices dropped.
@@ -68,9 +68,9 @@ TriangleMesh submesh(const TriangleMesh& mesh, Keep keep) {
 inline void collect_nulls(const nlohmann::json& json, const std::string& where,
                           std::vector<std::string>& nulls) {
   const std::string shape_limits = "/shape/thresholds";
-  const bool in_shape_limits = where.size() >= shape_limits.size() &&
-                               where.compare(where.size() - shape_limits.size(),
-                                             shape_limits.size(), shape_limits) == 0;
+  const bool in_shape_limits =
+      where.size() >= shape_limits.size() &&
+      where.compare(where.size() - shape_limits.size(), shape_limits.size(), shape_limits) == 0;
   if (json.is_null()) {
     nulls.push_back(where);
   } else if (json.is_object()) {
@@ -191,10 +191,10 @@ inline TriangleMesh flat_patch(int n, double h, double height) {
   return mesh;
 }
 
-/// Splits face `face` (a, b, c) of `mesh` at a new vertex m = (a + b) / 2 + lift · (c − (a + b) / 2)
-/// into (a, m, c), (m, b, c) and the sliver (a, b, m) that keeps the edge ab shared with
-/// the neighbour: the sliver's aspect ratio is about |ab| / (lift · height of c), and with
-/// lift = 0 it is exactly collinear when the midpoint is exact.
+/// Splits face `face` (a, b, c) of `mesh` at a new vertex m = (a + b) / 2 + lift · (c − (a + b) /
+/// 2) into (a, m, c), (m, b, c) and the sliver (a, b, m) that keeps the edge ab shared with the
+/// neighbour: the sliver's aspect ratio is about |ab| / (lift · height of c), and with lift = 0 it
+/// is exactly collinear when the midpoint is exact.
 inline TriangleMesh with_sliver(const TriangleMesh& mesh, int face, double lift) {
   TriangleMesh out = mesh;
   const int a = mesh.faces(face, 0), b = mesh.faces(face, 1), c = mesh.faces(face, 2);

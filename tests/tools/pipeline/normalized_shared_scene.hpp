@@ -30,7 +30,8 @@ inline NormalizedScene load_normalized_scene(const std::string& garment_dir,
   const Scene scene = load_scene(paths);
   const Normalization n = normalize_scene(scene);
   NormalizedScene out;
-  out.garment = {n.garment_to_scene.apply_rows(scene.garment.mesh.vertices), scene.garment.mesh.faces};
+  out.garment = {n.garment_to_scene.apply_rows(scene.garment.mesh.vertices),
+                 scene.garment.mesh.faces};
   out.avatar = {n.avatar_to_scene.apply_rows(scene.avatar.mesh.vertices), scene.avatar.mesh.faces};
   out.source_skeleton = {n.garment_to_scene.apply_rows(scene.source_skeleton->joints),
                          scene.source_skeleton->bones};

@@ -1,8 +1,8 @@
 #include <cmath>
 #include <string>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "extremes_support.hpp"
@@ -24,8 +24,8 @@ TEST_CASE("extremes: a garment starting a hair's breadth outside the avatar is c
           "[pipeline][extremes][gap]") {
   const double gap = GENERATE(1e-12, 1e-9, 0.5 * kDefaultDhat);
   CAPTURE(gap);
-  const RetargetResult result =
-      test::run_and_check(test::synthetic_scene(fmt::format("gap_{:g}", gap), test::cap_at_gap(gap)));
+  const RetargetResult result = test::run_and_check(
+      test::synthetic_scene(fmt::format("gap_{:g}", gap), test::cap_at_gap(gap)));
   INFO(result.message);
   REQUIRE(result.status == RetargetStatus::kCertified);
   const nlohmann::json report = read_report(result);
@@ -35,7 +35,8 @@ TEST_CASE("extremes: a garment starting a hair's breadth outside the avatar is c
 TEST_CASE("extremes: barrier support dhat from 1e-5 to 1e-1", "[pipeline][extremes][parameters]") {
   const double dhat = GENERATE(1e-5, 1e-4, 1e-3, 1e-2, 1e-1);
   CAPTURE(dhat);
-  RetargetOptions options = test::synthetic_scene(fmt::format("dhat_{:g}", dhat), test::cap_inside());
+  RetargetOptions options =
+      test::synthetic_scene(fmt::format("dhat_{:g}", dhat), test::cap_inside());
   options.overrides.dhat = dhat;
   options.overrides.max_al_rounds = 4;
   // The thinnest barrier never converges (below); fewer steps keep its failure quick.
@@ -46,8 +47,8 @@ TEST_CASE("extremes: barrier support dhat from 1e-5 to 1e-1", "[pipeline][extrem
     // A barrier this thin acts only within 1e-5 of the avatar and every CCD-bounded step
     // keeps a tenth of each gap, so t crawls: the run
     // stops at the round cap and says which knobs to turn.
-    CHECK_THAT(result.message, Catch::Contains("no collision-free snap") &&
-                                   Catch::Contains("--dhat"));
+    CHECK_THAT(result.message,
+               Catch::Contains("no collision-free snap") && Catch::Contains("--dhat"));
     return;
   }
   REQUIRE(result.status == RetargetStatus::kCertified);
@@ -74,10 +75,12 @@ TEST_CASE("extremes: barrier stiffness from 1e4 to 1e12", "[pipeline][extremes][
   }
 }
 
-TEST_CASE("extremes: Newton tolerance eps_tol from 1e-2 to 1e-10", "[pipeline][extremes][parameters]") {
+TEST_CASE("extremes: Newton tolerance eps_tol from 1e-2 to 1e-10",
+          "[pipeline][extremes][parameters]") {
   const double eps_tol = GENERATE(1e-2, 1e-4, 1e-6, 1e-8, 1e-10);
   CAPTURE(eps_tol);
-  RetargetOptions options = test::synthetic_scene(fmt::format("eps_{:g}", eps_tol), test::cap_inside());
+  RetargetOptions options =
+      test::synthetic_scene(fmt::format("eps_{:g}", eps_tol), test::cap_inside());
   options.overrides.eps_tol = eps_tol;
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);

@@ -2,9 +2,9 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
-#include <fmt/format.h>
 
 #include "core/io/obj_document.hpp"
 #include "extremes_support.hpp"
@@ -41,7 +41,8 @@ RetargetResult run_tent(const std::string& name, const TriangleMesh& garment) {
 
 }  // namespace
 
-TEST_CASE("extremes: the tent scene without defects is certified", "[pipeline][extremes][geometry]") {
+TEST_CASE("extremes: the tent scene without defects is certified",
+          "[pipeline][extremes][geometry]") {
   const RetargetResult result = run_tent("tent", tent_patch());
   INFO(result.message);
   CHECK(result.status == RetargetStatus::kCertified);
@@ -86,7 +87,8 @@ TEST_CASE("extremes: an exactly collinear (zero-area) garment face with distinct
   CHECK_FALSE(fs::exists(fs::path(options.out_dir) / "report.json"));
 }
 
-TEST_CASE("extremes: a zero-area garment face on a repeated vertex", "[pipeline][extremes][geometry]") {
+TEST_CASE("extremes: a zero-area garment face on a repeated vertex",
+          "[pipeline][extremes][geometry]") {
   TriangleMesh garment = tent_patch();
   garment.faces.conservativeResize(garment.faces.rows() + 1, 3);
   garment.faces.row(garment.faces.rows() - 1) << 30, 30, 31;
@@ -172,7 +174,8 @@ TEST_CASE("extremes: a garment vertex exactly on an avatar edge is resolved by t
   }
   fan.faces.resize(6, 3);
   for (int k = 0; k < 6; ++k) fan.faces.row(k) << 0, 1 + k, 1 + (k + 1) % 6;
-  const RetargetResult result = test::run_and_check(test::synthetic_scene("on_edge", fan, test::octahedron()));
+  const RetargetResult result =
+      test::run_and_check(test::synthetic_scene("on_edge", fan, test::octahedron()));
   INFO(result.message);
   CHECK(result.status == RetargetStatus::kCertified);
 }

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <string>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "core/io/obj_document.hpp"
 #include "extremes_support.hpp"
@@ -99,17 +99,17 @@ Outcome retarget_transformed(const ScaleScene& scene, double scale, const Vector
   const auto back = [&](const std::string& path) -> MatrixX3d {
     return (read_obj(path).positions.rowwise() - shift.transpose()) / scale;
   };
-  const std::string last_round =
-      fmt::format("round_{:02d}_garment.obj", result.report.al_rounds);
+  const std::string last_round = fmt::format("round_{:02d}_garment.obj", result.report.al_rounds);
   return {back((out / "frames" / last_round).string()), back(result.garment_path),
           result.report.shrink_depth};
 }
 
 }  // namespace
 
-TEST_CASE("extremes: a scene scaled by 1e-3 and 1e3 and moved by 1e4 gives the same "
-          "certified garment",
-          "[pipeline][extremes][scale][heavy]") {
+TEST_CASE(
+    "extremes: a scene scaled by 1e-3 and 1e3 and moved by 1e4 gives the same "
+    "certified garment",
+    "[pipeline][extremes][scale][heavy]") {
   const ScaleScene scene = GENERATE(bundled_scene(), shared_skirt_scene());
   const ObjDocument avatar = read_obj(scene.paths.avatar);
   const double scene_size =
@@ -121,9 +121,9 @@ TEST_CASE("extremes: a scene scaled by 1e-3 and 1e3 and moved by 1e4 gives the s
     double scale;
     Vector3d shift;
   };
-  for (const Case& c : {Case{"scale_1e-3", 1e-3, Vector3d::Zero()},
-                        Case{"scale_1e3", 1e3, Vector3d::Zero()},
-                        Case{"shift_1e4", 1.0, Vector3d(1e4, -1e4, 1e4)}}) {
+  for (const Case& c :
+       {Case{"scale_1e-3", 1e-3, Vector3d::Zero()}, Case{"scale_1e3", 1e3, Vector3d::Zero()},
+        Case{"shift_1e4", 1.0, Vector3d(1e4, -1e4, 1e4)}}) {
     const Outcome outcome = retarget_transformed(scene, c.scale, c.shift, c.name);
     REQUIRE(outcome.fitted.rows() == reference.fitted.rows());
     const auto agreement = [&](const MatrixX3d& a, const MatrixX3d& b) {
@@ -138,9 +138,10 @@ TEST_CASE("extremes: a scene scaled by 1e-3 and 1e3 and moved by 1e4 gives the s
   }
 }
 
-TEST_CASE("normalization: rescaled and moved copies of a scene give bit-identical solver input, "
-          "within half a lattice step of the exact map",
-          "[pipeline][extremes][scale]") {
+TEST_CASE(
+    "normalization: rescaled and moved copies of a scene give bit-identical solver input, "
+    "within half a lattice step of the exact map",
+    "[pipeline][extremes][scale]") {
   const ScaleScene scene = bundled_scene();
   const Scene original = load_scene(scene.paths);
   const double lattice = lattice_spacing(RetargetParameters{}.dhat);
@@ -152,9 +153,9 @@ TEST_CASE("normalization: rescaled and moved copies of a scene give bit-identica
   const MatrixX3d steps = reference.garment.vertices / lattice;
   CHECK((steps - steps.array().round().matrix()).cwiseAbs().maxCoeff() == 0.0);
 
-  for (const auto& [scale, shift] : {std::pair{1e-3, Vector3d(0.0, 0.0, 0.0)},
-                                     std::pair{1e3, Vector3d(0.0, 0.0, 0.0)},
-                                     std::pair{1.0, Vector3d(1e4, -1e4, 1e4)}}) {
+  for (const auto& [scale, shift] :
+       {std::pair{1e-3, Vector3d(0.0, 0.0, 0.0)}, std::pair{1e3, Vector3d(0.0, 0.0, 0.0)},
+        std::pair{1.0, Vector3d(1e4, -1e4, 1e4)}}) {
     const fs::path dir = test::fresh_temp_dir(fmt::format("normalization_lattice_{}", scale));
     ScenePaths paths = scene.paths;
     paths.garment = write_transformed(scene.paths.garment, dir, "garment.obj", scale, shift);

@@ -10,24 +10,26 @@
 namespace fs = std::filesystem;
 using namespace gr;
 
-TEST_CASE("extremes: a Newton solve capped at one iteration is reported, and the garment "
-          "written is still certified",
-          "[pipeline][extremes][solver]") {
+TEST_CASE(
+    "extremes: a Newton solve capped at one iteration is reported, and the garment "
+    "written is still certified",
+    "[pipeline][extremes][solver]") {
   const std::string scene = "tools/scenes/dress_form/";
   const fs::path out = test::fresh_temp_dir("extremes_newton_cap");
   const test::CliRun run = test::run_cli(
       {"retarget", "--garment", test::project_file(scene + "garment.obj"), "--avatar",
-       test::project_file(scene + "avatar.obj"), "--no-fit", test::project_file(scene + "no-fit.txt"),
-       "--out", out.string(), "--quality", "fast", "--max-newton-iterations", "1",
-       "--max-al-rounds", "2", "--inflation-step", "0.1"},
+       test::project_file(scene + "avatar.obj"), "--no-fit",
+       test::project_file(scene + "no-fit.txt"), "--out", out.string(), "--quality", "fast",
+       "--max-newton-iterations", "1", "--max-al-rounds", "2", "--inflation-step", "0.1"},
       "extremes_newton_cap");
   CAPTURE(run.out, run.err);
-  // One Newton step of up to 0.1 already lifts the avatar to a valid snap; the fit's one step is not
-  // enough. Every accepted step was CCD-bounded, so the garment is intersection free: it
-  // is written and certified, and the cap is reported on stderr and in the report.
+  // One Newton step of up to 0.1 already lifts the avatar to a valid snap; the fit's one step is
+  // not enough. Every accepted step was CCD-bounded, so the garment is intersection free: it is
+  // written and certified, and the cap is reported on stderr and in the report.
   CHECK(run.exit_code == kExitSuccess);
-  CHECK_THAT(run.err, Catch::Contains("fit stopped before its tolerance: 1 steps without converging") &&
-                          Catch::Contains("--max-newton-iterations"));
+  CHECK_THAT(run.err,
+             Catch::Contains("fit stopped before its tolerance: 1 steps without converging") &&
+                 Catch::Contains("--max-newton-iterations"));
   REQUIRE(fs::exists(out / "report.json"));
   CHECK(fs::exists(out / "garment.obj"));
   const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));

@@ -20,10 +20,14 @@ const std::string kScene = "tools/scenes/dress_form/";
 
 std::vector<std::string> bundled_args(const fs::path& out) {
   return {"retarget",
-          "--garment", gr::test::project_file(kScene + "garment.obj"),
-          "--avatar", gr::test::project_file(kScene + "avatar.obj"),
-          "--no-fit", gr::test::project_file(kScene + "no-fit.txt"),
-          "--out", out.string()};
+          "--garment",
+          gr::test::project_file(kScene + "garment.obj"),
+          "--avatar",
+          gr::test::project_file(kScene + "avatar.obj"),
+          "--no-fit",
+          gr::test::project_file(kScene + "no-fit.txt"),
+          "--out",
+          out.string()};
 }
 
 /// One balanced run of the bundled scene, shared by the sections below.
@@ -119,7 +123,8 @@ TEST_CASE("retarget of the bundled scene is certified and faithful to the input 
     CHECK(certificate["counts"]["garment_avatar_intersections"] == 0);
     CHECK(certificate["counts"]["garment_self_intersections"] == 0);
     CHECK(report["min_distance"]["normalized"].get<double>() > 0.0);
-    CHECK(report["min_distance"]["normalized"].get<double>() < report["parameters"]["dhat"].get<double>() * 5);
+    CHECK(report["min_distance"]["normalized"].get<double>() <
+          report["parameters"]["dhat"].get<double>() * 5);
     CHECK(report["inflate"]["status"] == "snapped");
     CHECK(report["inflate"]["al_rounds"].get<int>() >= 1);
     CHECK(report["fit"]["newton_iterations"].get<int>() >= 1);
@@ -131,10 +136,12 @@ TEST_CASE("retarget of the bundled scene is certified and faithful to the input 
     }
     CHECK(stages <= seconds["total"].get<double>() + 1e-6);
     CHECK(report["fit_error"]["mean"].get<double>() > 0.0);
-    CHECK(report["fit_error"]["p95"].get<double>() >= report["fit_error"]["mean"].get<double>() * 0.5);
+    CHECK(report["fit_error"]["p95"].get<double>() >=
+          report["fit_error"]["mean"].get<double>() * 0.5);
     CHECK(report["modelled"]["avatar_faces_modelled"].get<int>() <=
           report["modelled"]["avatar_faces_total"].get<int>());
-    CHECK(report["modelled"]["fit_faces"].get<int>() < report["modelled"]["garment_faces"].get<int>());
+    CHECK(report["modelled"]["fit_faces"].get<int>() <
+          report["modelled"]["garment_faces"].get<int>());
     CHECK(report["modelled"]["self_contact_where"] == "where the garment can fold onto itself");
     for (const char* stage : {"inflate", "fit"}) {
       const double share = report["modelled"]["fold_free_face_fraction"][stage].get<double>();
@@ -150,10 +157,10 @@ TEST_CASE("retarget of the bundled scene is certified and faithful to the input 
   }
 
   SECTION("the written garment passes validate on its own") {
-    const gr::test::CliRun check = gr::test::run_cli(
-        {"validate", "--garment", (out / "garment.obj").string(), "--avatar",
-         gr::test::project_file(kScene + "avatar.obj")},
-        "e2e_validate");
+    const gr::test::CliRun check =
+        gr::test::run_cli({"validate", "--garment", (out / "garment.obj").string(), "--avatar",
+                           gr::test::project_file(kScene + "avatar.obj")},
+                          "e2e_validate");
     CAPTURE(check.out, check.err);
     CHECK(check.exit_code == 0);
   }
@@ -164,7 +171,8 @@ TEST_CASE("the same inputs and thread count give byte-identical output files", "
   const fs::path second = gr::test::fresh_temp_dir("e2e_det_b");
   for (const auto& out : {first, second}) {
     auto args = bundled_args(out);
-    for (const char* extra : {"--quality", "fast", "--threads", "2", "--quiet"}) args.push_back(extra);
+    for (const char* extra : {"--quality", "fast", "--threads", "2", "--quiet"})
+      args.push_back(extra);
     const gr::test::CliRun run = gr::test::run_cli(args, "e2e_det");
     CAPTURE(run.err);
     REQUIRE(run.exit_code == 0);

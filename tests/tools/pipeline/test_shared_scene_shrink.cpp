@@ -38,15 +38,17 @@ TEST_CASE("signed distance of the shared avatars: sign and distance", "[shrink][
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::uniform_int_distribution<Eigen::Index> vertex(0, scene.avatar.vertices.rows() - 1);
   const Vector3d lo = scene.avatar.vertices.colwise().minCoeff().transpose().array() - 0.05;
-  const Vector3d size = scene.avatar.vertices.colwise().maxCoeff().transpose().array() + 0.05 - lo.array();
+  const Vector3d size =
+      scene.avatar.vertices.colwise().maxCoeff().transpose().array() + 0.05 - lo.array();
   int inside = 0, outside = 0;
   double worst_error = 0.0;
   for (int trial = 0; trial < 300; ++trial) {
     // Half uniform in the box, half near the surface (where the sign is hard).
-    const Vector3d p = trial % 2 == 0
-        ? Vector3d(lo + size.cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng))))
-        : Vector3d(scene.avatar.vertices.row(vertex(rng)).transpose() +
-                   0.06 * Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5));
+    const Vector3d p =
+        trial % 2 == 0
+            ? Vector3d(lo + size.cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng))))
+            : Vector3d(scene.avatar.vertices.row(vertex(rng)).transpose() +
+                       0.06 * Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5));
     const double winding = test::brute_force_winding_number(scene.avatar, p);
     const double distance = test::brute_force_distance(scene.avatar, p);
     const double phi = field.evaluate(p);
@@ -75,9 +77,12 @@ TEST_CASE("signed distance of the shared avatars: sign and distance", "[shrink][
   std::uniform_int_distribution<int> step(-4, 4);
   int checked = 0, inside_near = 0;
   for (int trial = 0; trial < 3000; ++trial) {
-    const Eigen::Vector3i ijk =
-        (scene.avatar.vertices.row(vertex(sign_rng)).transpose() / h).array().round().cast<int>().matrix() +
-        Eigen::Vector3i(step(sign_rng), step(sign_rng), step(sign_rng));
+    const Eigen::Vector3i ijk = (scene.avatar.vertices.row(vertex(sign_rng)).transpose() / h)
+                                    .array()
+                                    .round()
+                                    .cast<int>()
+                                    .matrix() +
+                                Eigen::Vector3i(step(sign_rng), step(sign_rng), step(sign_rng));
     const double winding = tree.winding_number(h * ijk.cast<double>());
     if (std::abs(std::abs(winding) - 0.5) < 0.05) continue;
     const double value = grid.voxel_value(ijk);
@@ -101,7 +106,8 @@ TEST_CASE("fast winding number and distance on the shared avatars", "[shrink][wi
   double worst = 0.0;
   int inside = 0;
   for (int trial = 0; trial < 150; ++trial) {
-    const Vector3d p = box.min() + box.sizes().cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng)));
+    const Vector3d p =
+        box.min() + box.sizes().cwiseProduct(Vector3d(unit(rng), unit(rng), unit(rng)));
     const double oracle = brute_force_winding_number(scene.avatar, p);
     const double fast = tree.winding_number(p);
     CAPTURE(avatar_dir, p.transpose(), oracle, fast);
@@ -109,7 +115,8 @@ TEST_CASE("fast winding number and distance on the shared avatars", "[shrink][wi
     REQUIRE(std::abs(fast - oracle) < 0.02);
     worst = std::max(worst, std::abs(fast - oracle));
     inside += oracle > 0.5;
-    REQUIRE(std::sqrt(tree.distance_sq(p)) == Approx(brute_force_distance(scene.avatar, p)).margin(1e-12));
+    REQUIRE(std::sqrt(tree.distance_sq(p)) ==
+            Approx(brute_force_distance(scene.avatar, p)).margin(1e-12));
   }
   // The samples reach both sides: the sign test below is not vacuous.
   CHECK(inside > 5);
@@ -133,7 +140,8 @@ TEST_CASE("levelset shrink of the skirt's own body is certified", "[shrink][leve
   REQUIRE(result.depth >= 0.0);
 }
 
-TEST_CASE("levelset shrink on the shared scenes: certified or a named conflict", "[shrink][levelset]") {
+TEST_CASE("levelset shrink on the shared scenes: certified or a named conflict",
+          "[shrink][levelset]") {
   // Both shared targets differ from the source body in pose or proportions (foxgirl's hips
   // are wider than the skirt's waist's medial reach, goblin's arms hang through the
   // sleeves): erosion alone cannot free them, and the error must say where.
@@ -165,8 +173,9 @@ TEST_CASE("levelset shrink on the shared scenes: certified or a named conflict",
 TEST_CASE("skeleton shrink of foxgirl under the skirt is certified", "[shrink][skeleton]") {
   const test::NormalizedScene scene = test::load_normalized_scene("skirt", "foxgirl");
   SkeletonShrinkOptions options;
-  const ShrinkResult result = shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton,
-                                                 scene.target_skeleton, scene.skin_weights, options);
+  const ShrinkResult result =
+      shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton, scene.target_skeleton,
+                         scene.skin_weights, options);
   require_certified(scene.avatar, result, scene.garment);
   REQUIRE(result.pullback > 0.0);
   REQUIRE(result.pullback <= options.pullback);
@@ -208,8 +217,9 @@ TEST_CASE("skeleton shrink of goblin under the puffer is certified", "[shrink][s
   }
 
   const SkeletonShrinkOptions options;
-  const ShrinkResult result = shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton,
-                                                 scene.target_skeleton, scene.skin_weights, options);
+  const ShrinkResult result =
+      shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton, scene.target_skeleton,
+                         scene.skin_weights, options);
   require_certified(scene.avatar, result, scene.garment);
   REQUIRE(result.collapse_rounds >= 1);
   REQUIRE(result.collapsed_vertices > 0);

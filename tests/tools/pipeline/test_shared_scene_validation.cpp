@@ -8,7 +8,8 @@
 #include "tools/pipeline/scene.hpp"
 #include "validate/certify/validation.hpp"
 
-TEST_CASE("each shared garment placed on each shared avatar intersects it", "[validate][shared-data]") {
+TEST_CASE("each shared garment placed on each shared avatar intersects it",
+          "[validate][shared-data]") {
   const std::string garment_name = GENERATE(as<std::string>{}, "skirt", "puffer");
   const std::string avatar_name = GENERATE(as<std::string>{}, "foxgirl", "goblin");
   CAPTURE(garment_name, avatar_name);
@@ -38,8 +39,10 @@ TEST_CASE("each shared garment placed on each shared avatar intersects it", "[va
   }
 
   SECTION("moved clear of the avatar: no garment-avatar fault, whatever the avatar's overlaps") {
-    const double avatar_width = avatar.vertices.col(0).maxCoeff() - avatar.vertices.col(0).minCoeff();
-    const double garment_width = garment.vertices.col(0).maxCoeff() - garment.vertices.col(0).minCoeff();
+    const double avatar_width =
+        avatar.vertices.col(0).maxCoeff() - avatar.vertices.col(0).minCoeff();
+    const double garment_width =
+        garment.vertices.col(0).maxCoeff() - garment.vertices.col(0).minCoeff();
     garment.vertices.col(0).array() += avatar_width + garment_width + 1.0;
     const gr::ValidationResult apart = gr::validate_meshes({garment}, avatar, {});
     const gr::GarmentFindings& h = apart.garments[0];

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include <openssl/evp.h>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
-#include <openssl/evp.h>
 
 #include "core/test_shapes.hpp"
 #include "tools/report_page/page_data.hpp"
@@ -33,12 +33,14 @@ inline std::vector<std::uint32_t> unpack(const std::string& bytes, std::size_t w
   std::vector<std::uint32_t> values(bytes.size() / width, 0);
   for (std::size_t i = 0; i < values.size(); ++i)
     for (std::size_t b = 0; b < width; ++b)
-      values[i] |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i * width + b])) << (8 * b);
+      values[i] |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i * width + b]))
+                   << (8 * b);
   return values;
 }
 
 /// The text between the first `open` and the next `close` after it; empty when absent.
-inline std::string between(const std::string& text, const std::string& open, const std::string& close) {
+inline std::string between(const std::string& text, const std::string& open,
+                           const std::string& close) {
   const auto start = text.find(open);
   if (start == std::string::npos) return "";
   const auto end = text.find(close, start + open.size());
@@ -48,7 +50,8 @@ inline std::string between(const std::string& text, const std::string& open, con
 
 /// A page's embedded scene.
 inline nlohmann::json scene_of(const std::string& html) {
-  const std::string text = between(html, "<script type=\"application/json\" id=\"gr-scene\">", "</script>");
+  const std::string text =
+      between(html, "<script type=\"application/json\" id=\"gr-scene\">", "</script>");
   REQUIRE_FALSE(text.empty());
   return nlohmann::json::parse(text);
 }

@@ -26,14 +26,16 @@ std::size_t count_of(const std::string& text, const std::string& what) {
 std::vector<std::string> web_addresses(const std::string& text) {
   const std::regex address(R"(https?://[^\s"'<>)]*)", std::regex::icase);
   std::vector<std::string> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), address); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), address);
+       it != std::sregex_iterator(); ++it)
     found.push_back(it->str());
   return found;
 }
 
 nlohmann::json sample_report() {
   return {{"quality", "balanced"},
-          {"seconds", {{"read", 0.01}, {"shrink", 0.5}, {"inflate", 1.25}, {"fit", 2.5}, {"total", 4.75}}},
+          {"seconds",
+           {{"read", 0.01}, {"shrink", 0.5}, {"inflate", 1.25}, {"fit", 2.5}, {"total", 4.75}}},
           {"fit_error", {{"mean", 0.00123}, {"p95", 0.00456}}},
           {"min_distance", {{"avatar_units", 0.00077}}},
           {"shape", {{"scale", 1.0}, {"mean_edge_change", 0.1234}, {"p95_edge_change", 0.5}}},
@@ -43,10 +45,12 @@ nlohmann::json sample_report() {
 
 }  // namespace
 
-TEST_CASE("the report page is one HTML file carrying its script, licence and scene", "[report_page]") {
+TEST_CASE("the report page is one HTML file carrying its script, licence and scene",
+          "[report_page]") {
   gr::ReportPageData data = gr::test::small_page_scene();
   data.report = sample_report();
-  data.certificate = {{"kind", "certificate"}, {"certified", true},
+  data.certificate = {{"kind", "certificate"},
+                      {"certified", true},
                       {"counts", {{"garment_avatar_intersections", 0}}},
                       {"garments", {{{"avatar_clearance", {{"distance", 0.00071}}}}}}};
   const std::string html = gr::report_page_html(data);
@@ -55,7 +59,8 @@ TEST_CASE("the report page is one HTML file carrying its script, licence and sce
     CHECK(html.rfind("<!DOCTYPE html>\n<html lang=\"en\">", 0) == 0);
     CHECK(html.size() > gr::viewer_script().size());
     CHECK(html.substr(html.size() - 8) == "</html>\n");
-    for (const char* tag : {"<html", "</html>", "<head>", "</head>", "<body>", "</body>", "<main", "</main>"})
+    for (const char* tag :
+         {"<html", "</html>", "<head>", "</head>", "<body>", "</body>", "<main", "</main>"})
       CHECK(count_of(html, tag) == 1);
     CHECK(count_of(html, "<script") == 2);
     CHECK(count_of(html, "</script>") == 2);
@@ -94,13 +99,14 @@ TEST_CASE("the report page is one HTML file carrying its script, licence and sce
     REQUIRE(garment["shapes"].size() == 2);
     CHECK(garment["shapes"][0]["label"] == "input");
     CHECK(garment["shapes"][1]["marked"].empty());
-    CHECK(garment["shapes"][0]["marked"].size() == static_cast<std::size_t>(data.garments[0].faces.rows()));
+    CHECK(garment["shapes"][0]["marked"].size() ==
+          static_cast<std::size_t>(data.garments[0].faces.rows()));
     CHECK(garment["no_fit"].size() == 96);
     const auto faces = gr::test::unpack(gr::test::decode_base64(garment["faces"]["data"]), 2);
     REQUIRE(faces.size() == static_cast<std::size_t>(data.garments[0].faces.size()));
     for (std::size_t i = 0; i < faces.size(); ++i)
-      CHECK(faces[i] == static_cast<std::uint32_t>(data.garments[0].faces(static_cast<Eigen::Index>(i / 3),
-                                                                          static_cast<Eigen::Index>(i % 3))));
+      CHECK(faces[i] == static_cast<std::uint32_t>(data.garments[0].faces(
+                            static_cast<Eigen::Index>(i / 3), static_cast<Eigen::Index>(i % 3))));
     const auto& shape = garment["shapes"][1];
     const auto q = gr::test::unpack(gr::test::decode_base64(shape["positions"]["data"]), 2);
     const gr::MatrixX3d& v = data.garments[0].shapes[1].vertices;
@@ -114,7 +120,8 @@ TEST_CASE("the report page is one HTML file carrying its script, licence and sce
     const auto d = gr::test::unpack(gr::test::decode_base64(shape["distance"]["data"]), 2);
     const double max = shape["distance"]["max"];
     for (std::size_t i = 0; i < d.size(); ++i)
-      CHECK(d[i] / 65535.0 * max == Approx(data.garments[0].shapes[1].distance[i]).margin(max / 65535.0));
+      CHECK(d[i] / 65535.0 * max ==
+            Approx(data.garments[0].shapes[1].distance[i]).margin(max / 65535.0));
   }
 
   SECTION("the report's numbers and the verdict are beside the view, escaped") {
@@ -148,7 +155,8 @@ TEST_CASE("the report page is one HTML file carrying its script, licence and sce
     data.garments[0].shapes[1].distance.pop_back();
     CHECK_THROWS_AS(gr::report_page_html(data), std::invalid_argument);
     data = gr::test::small_page_scene();
-    data.garments[0].shapes[0].marked_faces.push_back(static_cast<int>(data.garments[0].faces.rows()));
+    data.garments[0].shapes[0].marked_faces.push_back(
+        static_cast<int>(data.garments[0].faces.rows()));
     CHECK_THROWS_AS(gr::report_page_html(data), std::invalid_argument);
   }
 

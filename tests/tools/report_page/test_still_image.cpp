@@ -21,7 +21,8 @@ std::size_t drawn_pixels(const gr::RgbImage& image) {
 std::size_t pixels_like(const gr::RgbImage& image, gr::Rgb8 colour) {
   std::size_t n = 0;
   for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) n += gr::test::same_hue(image.at(x, y), colour, 8.0) ? 1 : 0;
+    for (int x = 0; x < image.width; ++x)
+      n += gr::test::same_hue(image.at(x, y), colour, 8.0) ? 1 : 0;
   return n;
 }
 
@@ -54,8 +55,10 @@ TEST_CASE("still images show the garment in its heat colours on the avatar", "[r
         best = v;
     const gr::Vector3d p = camera.project(shape.vertices.row(best).transpose());
     const gr::Rgb8 seen = image.at(static_cast<int>(p.x()), static_cast<int>(p.y()));
-    const gr::Rgb8 expected = gr::heat_colour(shape.distance[static_cast<std::size_t>(best)] / 0.02);
-    CAPTURE(p.x(), p.y(), int(seen.r), int(seen.g), int(seen.b), int(expected.r), int(expected.g), int(expected.b));
+    const gr::Rgb8 expected =
+        gr::heat_colour(shape.distance[static_cast<std::size_t>(best)] / 0.02);
+    CAPTURE(p.x(), p.y(), int(seen.r), int(seen.g), int(seen.b), int(expected.r), int(expected.g),
+            int(expected.b));
     CHECK(gr::test::same_hue(seen, expected));
   }
 
@@ -69,7 +72,8 @@ TEST_CASE("still images show the garment in its heat colours on the avatar", "[r
 
   SECTION("marked faces are drawn in the marked colour") {
     gr::ReportPageData marked = data;
-    marked.garments[0].shapes.back().marked_faces = {180, 181, 182, 183, 184, 185};  // facing -y and +x
+    marked.garments[0].shapes.back().marked_faces = {180, 181, 182,
+                                                     183, 184, 185};  // facing -y and +x
     CHECK(pixels_like(gr::render_still(marked, view, options), gr::kMarkedColour) > 0);
   }
 

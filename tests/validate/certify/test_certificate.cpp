@@ -27,16 +27,19 @@ nlohmann::json read_json(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-const gr::TriangleMesh kAvatar = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}});
+const gr::TriangleMesh kAvatar =
+    make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}});
 
 }  // namespace
 
 TEST_CASE("certificate of a clean garment, computed from the files", "[validate][certificate]") {
   const auto dir = gr::test::fresh_temp_dir("certificate_clean");
   const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
-  const std::string garment = write_text(
-      dir / "garment.obj", gr::test::obj_text(triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5})));
-  const nlohmann::json extra = {{"parameters", {{"dhat", 0.002}}}, {"input_sha256", {{"garment", "abc"}}}};
+  const std::string garment =
+      write_text(dir / "garment.obj",
+                 gr::test::obj_text(triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5})));
+  const nlohmann::json extra = {{"parameters", {{"dhat", 0.002}}},
+                                {"input_sha256", {{"garment", "abc"}}}};
   gr::ValidationOptions options;
   options.threshold = 0.6;
   const gr::Certificate c = gr::certify_garment(garment, avatar, extra, options);
@@ -87,12 +90,15 @@ TEST_CASE("validation of layers: each against the avatar and against each other"
           "[validate][report]") {
   const auto dir = gr::test::fresh_temp_dir("validation_layers");
   const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
-  const std::string inner = write_text(
-      dir / "inner.obj", gr::test::obj_text(triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5})));
-  const std::string outer = write_text(
-      dir / "outer.obj", gr::test::obj_text(triangle({0.2, 0.2, 0.4}, {0.3, 0.2, 0.6}, {0.2, 0.3, 0.6})));
-  const std::string apart = write_text(
-      dir / "apart.obj", gr::test::obj_text(triangle({0.1, 0.1, 0.9}, {0.9, 0.1, 0.9}, {0.1, 0.9, 0.9})));
+  const std::string inner =
+      write_text(dir / "inner.obj",
+                 gr::test::obj_text(triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5})));
+  const std::string outer =
+      write_text(dir / "outer.obj",
+                 gr::test::obj_text(triangle({0.2, 0.2, 0.4}, {0.3, 0.2, 0.6}, {0.2, 0.3, 0.6})));
+  const std::string apart =
+      write_text(dir / "apart.obj",
+                 gr::test::obj_text(triangle({0.1, 0.1, 0.9}, {0.9, 0.1, 0.9}, {0.1, 0.9, 0.9})));
 
   const gr::Validation crossing = gr::validate_files({inner, outer}, avatar, {});
   CHECK_FALSE(crossing.result.certified());
@@ -123,10 +129,16 @@ TEST_CASE("the marks file holds exactly the offending faces", "[validate][report
   const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
   // Face 0 pierces avatar face 0; face 1 is far away; face 2 is degenerate and far away.
   const std::string garment = write_text(
-      dir / "garment.obj",
-      gr::test::obj_text(make_mesh({{0.2, 0.2, -1}, {0.3, 0.2, 1}, {0.2, 0.3, 1}, {5, 5, 5}, {6, 5, 5},
-                                    {5, 6, 5}, {7, 7, 7}, {8, 8, 8}, {9, 9, 9}},
-                                   {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}})));
+      dir / "garment.obj", gr::test::obj_text(make_mesh({{0.2, 0.2, -1},
+                                                         {0.3, 0.2, 1},
+                                                         {0.2, 0.3, 1},
+                                                         {5, 5, 5},
+                                                         {6, 5, 5},
+                                                         {5, 6, 5},
+                                                         {7, 7, 7},
+                                                         {8, 8, 8},
+                                                         {9, 9, 9}},
+                                                        {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}})));
   const gr::Validation v = gr::validate_files({garment}, avatar, {});
   const std::string marks = (dir / "marks.obj").string();
   gr::write_marks_obj(marks, v);
@@ -156,11 +168,14 @@ TEST_CASE("report lists are capped while counts stay complete", "[validate][repo
   const auto dir = gr::test::fresh_temp_dir("validation_capped");
   const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
   // Two faces piercing the avatar.
-  const std::string garment = write_text(
-      dir / "garment.obj",
-      gr::test::obj_text(make_mesh({{0.2, 0.2, -1}, {0.3, 0.2, 1}, {0.2, 0.3, 1},
-                                    {0.6, 0.6, -1}, {0.7, 0.6, 1}, {0.6, 0.7, 1}},
-                                   {{0, 1, 2}, {3, 4, 5}})));
+  const std::string garment =
+      write_text(dir / "garment.obj", gr::test::obj_text(make_mesh({{0.2, 0.2, -1},
+                                                                    {0.3, 0.2, 1},
+                                                                    {0.2, 0.3, 1},
+                                                                    {0.6, 0.6, -1},
+                                                                    {0.7, 0.6, 1},
+                                                                    {0.6, 0.7, 1}},
+                                                                   {{0, 1, 2}, {3, 4, 5}})));
   const gr::Validation v = gr::validate_files({garment}, avatar, {});
   const auto capped = gr::validation_report(v, 1);
   CHECK(capped["counts"]["garment_avatar_intersections"] == 2);

@@ -24,7 +24,8 @@ gr::TriangleMesh random_pair_of_triangles(std::mt19937& rng) {
   for (int t = 0; t < 2; ++t) {
     const Vector3d centre(unit(rng), unit(rng), unit(rng));
     for (int k = 0; k < 3; ++k)
-      mesh.vertices.row(3 * t + k) = (centre + Vector3d(corner(rng), corner(rng), corner(rng))).transpose();
+      mesh.vertices.row(3 * t + k) =
+          (centre + Vector3d(corner(rng), corner(rng), corner(rng))).transpose();
   }
   mesh.faces.resize(2, 3);
   mesh.faces << 0, 1, 2, 3, 4, 5;
@@ -52,12 +53,12 @@ double pair_distance(const gr::Candidates& c, std::size_t k, const MatrixX3d& V)
   const auto row = [&](int i) -> Vector3d { return V.row(i).transpose(); };
   if (k < c.point_triangle.size()) {
     const auto& pt = c.point_triangle[k];
-    return std::sqrt(gr::point_triangle_distance_sq(row(pt.point), row(pt.triangle[0]), row(pt.triangle[1]),
-                                                    row(pt.triangle[2])));
+    return std::sqrt(gr::point_triangle_distance_sq(row(pt.point), row(pt.triangle[0]),
+                                                    row(pt.triangle[1]), row(pt.triangle[2])));
   }
   const auto& ee = c.edge_edge[k - c.point_triangle.size()];
-  return std::sqrt(gr::edge_edge_distance_sq(row(ee.edge_a[0]), row(ee.edge_a[1]), row(ee.edge_b[0]),
-                                             row(ee.edge_b[1])));
+  return std::sqrt(gr::edge_edge_distance_sq(row(ee.edge_a[0]), row(ee.edge_a[1]),
+                                             row(ee.edge_b[0]), row(ee.edge_b[1])));
 }
 
 }  // namespace
@@ -69,7 +70,8 @@ TEST_CASE("CCD steps are free of crossings under exact predicates", "[ccd][exact
   const int trials = 300, substeps = 100;
   int limited = 0;
   for (int trial = 0; trial < trials; ++trial) {
-    const gr::TriangleMesh garment = random_pair_of_triangles(rng), avatar = random_pair_of_triangles(rng);
+    const gr::TriangleMesh garment = random_pair_of_triangles(rng),
+                           avatar = random_pair_of_triangles(rng);
     const gr::ContactMesh mesh = gr::ContactMesh::build(garment, avatar, true);
     MatrixX3d V0(12, 3);
     V0 << garment.vertices, avatar.vertices;
@@ -93,7 +95,8 @@ TEST_CASE("CCD steps are free of crossings under exact predicates", "[ccd][exact
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       const double d0 = pair_distance(candidates, k, V0);
       CAPTURE(k, d0);
-      REQUIRE(pair_distance(candidates, k, V_end) >= options.min_separation_ratio * d0 * (1.0 - 1e-9));
+      REQUIRE(pair_distance(candidates, k, V_end) >=
+              options.min_separation_ratio * d0 * (1.0 - 1e-9));
     }
   }
   // The motions are large enough that many steps are actually limited by contact.

@@ -31,7 +31,9 @@ gr::TriangleMesh random_soup(std::mt19937& rng, int faces, int pool) {
   std::vector<Eigen::RowVector3i> rows;
   while (static_cast<int>(rows.size()) < faces) {
     const Eigen::RowVector3i f(corner(rng), corner(rng), corner(rng));
-    auto p = [&](int c) { return P(m.vertices(f[c], 0), m.vertices(f[c], 1), m.vertices(f[c], 2)); };
+    auto p = [&](int c) {
+      return P(m.vertices(f[c], 0), m.vertices(f[c], 1), m.vertices(f[c], 2));
+    };
     if (!CGAL::collinear(p(0), p(1), p(2))) rows.push_back(f);
   }
   m.faces.resize(faces, 3);
@@ -61,9 +63,11 @@ bool meet_beyond_shared(const T& a, const T& b) {
     return shared.size() == 2 && S(shared[0], shared[1]).has_on(q);
   };
   if (const P* q = boost::get<P>(&*meet)) return !inside_shared(*q);
-  if (const S* s = boost::get<S>(&*meet)) return !(inside_shared(s->source()) && inside_shared(s->target()));
+  if (const S* s = boost::get<S>(&*meet))
+    return !(inside_shared(s->source()) && inside_shared(s->target()));
   if (const T* t = boost::get<T>(&*meet))
-    return !(inside_shared(t->vertex(0)) && inside_shared(t->vertex(1)) && inside_shared(t->vertex(2)));
+    return !(inside_shared(t->vertex(0)) && inside_shared(t->vertex(1)) &&
+             inside_shared(t->vertex(2)));
   // A coplanar overlap with four or more corners has area: never inside an edge or point.
   return true;
 }
@@ -104,7 +108,8 @@ TEST_CASE("self-intersections agree with an exact brute force", "[validate][cros
     for (int j = i + 1; j < m.faces.rows(); ++j) {
       const T a = exact_triangle(m, i), b = exact_triangle(m, j);
       for (int c = 0; c < 3; ++c)
-        if (b.vertex(c) == a.vertex(0) || b.vertex(c) == a.vertex(1) || b.vertex(c) == a.vertex(2)) {
+        if (b.vertex(c) == a.vertex(0) || b.vertex(c) == a.vertex(1) ||
+            b.vertex(c) == a.vertex(2)) {
           ++sharing;
           break;
         }

@@ -18,16 +18,20 @@ std::size_t self_count(const gr::TriangleMesh& mesh) {
 
 TEST_CASE("faces sharing an edge", "[validate][self]") {
   SECTION("flat, on opposite sides: clean") {
-    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, -1, 0}}, {{0, 1, 2}, {1, 0, 3}})) == 0);
+    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, -1, 0}},
+                               {{0, 1, 2}, {1, 0, 3}})) == 0);
   }
   SECTION("bent: clean") {
-    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0.5, 1}}, {{0, 1, 2}, {1, 0, 3}})) == 0);
+    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0.5, 1}},
+                               {{0, 1, 2}, {1, 0, 3}})) == 0);
   }
   SECTION("folded flat onto each other: intersecting") {
-    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 2, 0}}, {{0, 1, 2}, {1, 0, 3}})) == 1);
+    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 2, 0}},
+                               {{0, 1, 2}, {1, 0, 3}})) == 1);
   }
   SECTION("folded to within 1e-12 of flat: clean") {
-    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 2, 1e-12}}, {{0, 1, 2}, {1, 0, 3}})) == 0);
+    CHECK(self_count(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 2, 1e-12}},
+                               {{0, 1, 2}, {1, 0, 3}})) == 0);
   }
 }
 
@@ -105,8 +109,9 @@ TEST_CASE("degenerate faces are reported, never skipped silently", "[validate][s
   CHECK(found.pairs.count == 0);
   SECTION("a degenerate face away from its neighbours is still tested") {
     // A collinear face (its own vertices) piercing face 0.
-    const auto pierced = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, -1}, {0.2, 0.2, 0}, {0.2, 0.2, 1}},
-                                   {{0, 1, 2}, {3, 4, 5}});
+    const auto pierced =
+        make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, -1}, {0.2, 0.2, 0}, {0.2, 0.2, 1}},
+                  {{0, 1, 2}, {3, 4, 5}});
     CHECK(gr::find_degenerate_faces(pierced) == std::vector<int>{1});
     CHECK(self_count(pierced) == 1);
   }

@@ -43,8 +43,7 @@ TriangleMesh grid_patch(int n, bool seam = false) {
 
 }  // namespace
 
-TEST_CASE("shape change: the unchanged garment has scale 1 and no change",
-          "[validate][shape]") {
+TEST_CASE("shape change: the unchanged garment has scale 1 and no change", "[validate][shape]") {
   const bool seam = GENERATE(false, true);
   CAPTURE(seam);
   const TriangleMesh patch = grid_patch(6, seam);
@@ -110,8 +109,7 @@ TEST_CASE("shape change: a patch stretched along x", "[validate][shape]") {
   CHECK(change.loop_displacement == Approx(moved / count / (n * std::sqrt(2.0))).epsilon(1e-12));
 }
 
-TEST_CASE("shape change: a moved garment keeps its shape but its loops move",
-          "[validate][shape]") {
+TEST_CASE("shape change: a moved garment keeps its shape but its loops move", "[validate][shape]") {
   const TriangleMesh patch = grid_patch(4);
   MatrixX3d moved = patch.vertices;
   moved.rowwise() += gr::RowVector3d(0.0, 0.0, 3.0);
