@@ -76,7 +76,8 @@ std::string csv_row(const Run& run) {
       p.solver.fit_samples_per_face, r.seconds.shrink, r.seconds.inflate, r.seconds.fit,
       r.seconds.certify, r.seconds.total, r.inflate_newton_iterations, r.fit_newton_iterations,
       r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95, r.shape.mean_edge_change,
-      r.shape.p95_edge_change, r.shape.max_edge_change, r.surface_energy_per_area, r.min_distance / r.scene_scale);
+      r.shape.p95_edge_change, r.shape.max_edge_change, r.surface_energy_per_area,
+      r.min_distance / r.scene_scale);
 }
 
 const std::vector<std::string> kTableColumns = {"scene",
