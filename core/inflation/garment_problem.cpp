@@ -113,7 +113,6 @@ std::map<std::string, double> GarmentProblem::term_values(const Eigen::VectorXd&
 void GarmentProblem::gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) {
   const auto V = layout_.garment(x);
   const double t = layout_.t(x);
-  gradient.setZero(layout_.dof_count());
   for (std::size_t i = 0; i < terms_.size(); ++i) {
     const WeightedTerm& weighted = terms_[i];
     if (i == 0) {

@@ -192,6 +192,8 @@ struct SolverScene {
   GarmentScene scene;
   /// Garment motion the contact scope allows for (normalized units).
   double scope_margin = 0.0;
+  /// Per garment face, whether it fits (not no-fit).
+  std::vector<bool> fit_faces;
 };
 
 SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& shrunk,
@@ -218,9 +220,10 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
                        normalized.target_skeleton->bones, run.options.skirt};
   scene.no_fit = in.scene.no_fit;
   scene.distance_field = &distance_field;
-  const std::vector<bool> fits = fit_face_mask(
+  solver.fit_faces = fit_face_mask(
       normalized.garment.faces, static_cast<int>(normalized.garment.vertices.rows()), scene.no_fit);
-  report.fit_faces = static_cast<int>(std::count(fits.begin(), fits.end(), true));
+  report.fit_faces =
+      static_cast<int>(std::count(solver.fit_faces.begin(), solver.fit_faces.end(), true));
   report.self_contact = run.parameters().solver.self_contact;
   report.self_contact_everywhere = run.parameters().solver.self_contact_everywhere;
   return solver;
@@ -398,15 +401,14 @@ void shape_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
 }
 
 /// Measure: fit error of the written garment; the one-line summary.
-std::string measure_stage(Run& run, const Inputs& in, const MatrixX3d& garment,
-                          const Certificate& certificate, double total_seconds) {
+std::string measure_stage(Run& run, const Inputs& in, const std::vector<bool>& fit_faces,
+                          const MatrixX3d& garment, const Certificate& certificate,
+                          double total_seconds) {
   RetargetReport& report = run.report();
   const Normalization& frames = in.normalized.normalization;
   const TriangleMesh& rest = in.normalized.garment;
   const TriangleMesh written{frames.avatar_to_scene.invert_rows(garment), rest.faces};
-  const std::vector<bool> fits =
-      fit_face_mask(rest.faces, static_cast<int>(rest.vertices.rows()), in.scene.no_fit);
-  report.fit_error = measure_fit_error(written, fits, in.scene.avatar.mesh);
+  report.fit_error = measure_fit_error(written, fit_faces, in.scene.avatar.mesh);
   const auto totals = certificate.validation.result.totals();
   // The solver sees only pairs within dhat; a garment that ended further away takes the
   // certificate's clearance, so the report never holds an infinity.
@@ -481,7 +483,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   write_stage(run, in, fit.garment);
   shape_stage(run, in, fit.garment);
   const Certificate certificate = certify_stage(run);
-  std::string summary = measure_stage(run, in, fit.garment, certificate, total.seconds());
+  std::string summary =
+      measure_stage(run, in, solver.fit_faces, fit.garment, certificate, total.seconds());
   run.progress.log("certify", "{}", summary);
   RetargetStatus status =
       report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified;
