@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/mesh/boundary_loops.hpp"
@@ -48,7 +49,15 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
                                     s.source_joints, s.target_joints, s.bones, s.skirt);
     position_ =
         &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_, layout_);
-  } else if (stage == Stage::kFit) {
+  } else if (stage == Stage::kInflation) {
+    if (parameters.w_tether > 0.0) {
+      std::vector<int> all(static_cast<std::size_t>(scene.garment.vertices.rows()));
+      std::iota(all.begin(), all.end(), 0);
+      add_term<AnchorEnergy>(parameters.w_tether, scene.garment.vertices, std::move(all), layout_,
+                             vertex_area_shares(scene.garment.vertices, scene.garment.faces),
+                             "tether");
+    }
+  } else {
     if (parameters.w_stretch > 0.0)
       add_term<StretchEnergy>(parameters.w_stretch, scene.garment, layout_);
     if (parameters.w_anchor > 0.0)

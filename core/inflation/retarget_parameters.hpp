@@ -25,6 +25,11 @@ struct RetargetParameters {
   /// sphere stalled the push on t before t = 1).
   double w_stretch = 1.0;
   double w_anchor = 10.0;
+  /// Without skeletons, in the inflation: every vertex pulled to its input place, weighted
+  /// by its share of the garment's area (AnchorEnergy "tether"). Without it the inflation's
+  /// minimum puts a free-floating garment anywhere clear of the body: pushed by the
+  /// growing avatar, a patch on a cone's tip slid 5 units away before the fit pulled it back.
+  double w_tether = 1.0;
   double w_fit = 2.0;            ///< fit step only
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;      ///< model garment–garment contact

@@ -24,12 +24,14 @@ struct LevelsetShrinkOptions {
 /// (inner overlapping parts) stays. The depth d is the smallest found by bisection whose
 /// shrunk avatar passes find_shrink_conflict against the garment; d = 0 (the avatar itself)
 /// when the garment is already free of it.
-/// @param avatar #V×3 / #F×3, normalized scene units; `grid` built from it with full depth.
+/// @param avatar #V×3 / #F×3, normalized scene units; `grid` built from it. A narrow-band
+///        grid serves erosions down to its band's depth, which is all most scenes need.
 /// @param garment #G×3 / #H×3, same frame.
+/// @throw ShrinkBandTooShallowError when the grid is narrow-band, walks reach its floor and
+///        the deepest shrink there still conflicts: retry on a full-depth grid.
 /// @throw NoValidShrinkError when even the deepest shrink (every vertex in the medial
 ///        region) conflicts with the garment; it names the conflict.
-/// @throw std::invalid_argument on a non-positive tolerance or step, or a narrow-band grid
-///        (the walk needs the distance at full depth).
+/// @throw std::invalid_argument on a non-positive tolerance or step.
 /// @throw OperationCancelled when options.progress returns false.
 ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& garment,
                              const SignedDistanceGrid& grid,

@@ -15,10 +15,11 @@ struct ShrinkResult {
   double depth = 0.0;       ///< levelset: the erosion depth d (normalized units); skeleton: 0
   double pullback = 0.0;    ///< skeleton: fraction of the way back toward the surface; levelset: 0
   int medial_vertices = 0;  ///< levelset: vertices stopped in the medial region before depth d
-  int collapsed_vertices = 0;  ///< skeleton: vertices pulled toward a joint to clear a crossing
-  int collapse_rounds = 0;     ///< skeleton: rounds of pulling crossing faces inward
-  int certifications = 0;      ///< exact garment checks run
-  double seconds = 0.0;        ///< wall time of the shrink
+  int collapsed_vertices = 0;    ///< skeleton: vertices pulled toward a joint to clear a crossing
+  int collapse_rounds = 0;       ///< skeleton: rounds of pulling crossing faces inward
+  int certifications = 0;        ///< exact garment checks run
+  bool full_depth_grid = false;  ///< levelset: the erosion needed distances below the band
+  double seconds = 0.0;          ///< wall time of the shrink
 };
 
 /// Where the shrunk avatar and the garment still conflict.
@@ -45,6 +46,13 @@ class NoValidShrinkError : public std::runtime_error {
 
  private:
   ShrinkConflict conflict_;
+};
+
+/// The level-set shrink on a narrow-band grid reached the band's floor and still conflicts:
+/// a grid with a deeper band (or full depth) may find a shrink.
+class ShrinkBandTooShallowError : public NoValidShrinkError {
+ public:
+  using NoValidShrinkError::NoValidShrinkError;
 };
 
 }  // namespace gr

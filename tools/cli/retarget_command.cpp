@@ -72,6 +72,10 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
                   "Weight holding boundary loops at their input places, without skeletons "
                   "only (default 10; 0 switches it off)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--w-tether", o.w_tether,
+                  "Weight pulling every garment vertex to its input place (per unit area) "
+                  "during the inflation, without skeletons only (default 1; 0 switches it off)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-newton-iterations", o.max_newton_iterations,
                   "Iteration cap per Newton solve")
       ->check(CLI::PositiveNumber);

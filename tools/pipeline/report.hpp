@@ -26,8 +26,9 @@ struct RetargetReport {
   StageSeconds seconds;
 
   ShrinkMode shrink_mode = ShrinkMode::kLevelset;
-  double shrink_depth = 0.0;       ///< levelset erosion d, normalized units (0 for skeleton)
-  int shrink_medial_vertices = 0;  ///< vertices stopped in the medial region
+  double shrink_depth = 0.0;            ///< levelset erosion d, normalized units (0 for skeleton)
+  int shrink_medial_vertices = 0;       ///< vertices stopped in the medial region
+  bool shrink_full_depth_grid = false;  ///< levelset: eroded deeper than the distance band
 
   int al_rounds = 0;
   int al_resets = 0;

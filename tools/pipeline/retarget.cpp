@@ -32,10 +32,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// How far outside the avatar the signed-distance grid holds distances (normalized units):
-/// the fit pulls garment points only from within it.
-constexpr double kFitBand = 0.1;
-
 /// Newton progress lines: the first steps, then every tenth.
 constexpr int kNewtonLogEvery = 10;
 /// A boundary loop further than this (in lengths of its bone) from its place along the bone
@@ -172,15 +168,11 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
   return normalized;
 }
 
-/// The avatar's signed distance: read by the fit everywhere near the surface, and at full
-/// depth by the level-set shrink.
+/// The avatar's signed distance near its surface: read by the fit, and by the level-set
+/// shrink (which builds a full-depth grid itself when it must erode deeper).
 SignedDistanceGrid distance_grid_stage(Run& run, const TriangleMesh& avatar) {
   const StageTimer timer;
-  SignedDistanceOptions grid_options;
-  grid_options.exterior_band = kFitBand;
-  grid_options.full_depth = run.report().shrink_mode == ShrinkMode::kLevelset;
-  SignedDistanceGrid grid =
-      build_signed_distance(avatar, run.parameters().voxel_size, grid_options);
+  SignedDistanceGrid grid = build_distance_grid(avatar, run.parameters().voxel_size);
   run.progress.log("shrink", "signed distance: {} voxels of {:.4g} in {:.2f} s",
                    grid.active_voxel_count(), run.parameters().voxel_size, timer.seconds());
   return grid;
@@ -207,7 +199,7 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
   scene.shrunk_avatar = shrunk.vertices;
   const double largest_avatar_motion =
       (normalized.avatar.vertices - shrunk.vertices).rowwise().norm().maxCoeff();
-  solver.scope_margin = largest_avatar_motion + kFitBand + run.parameters().solver.dhat;
+  solver.scope_margin = largest_avatar_motion + kDistanceBand + run.parameters().solver.dhat;
   scene.avatar_faces_used = reachable_avatar_faces(normalized.garment.vertices, shrunk.vertices,
                                                    normalized.avatar.vertices,
                                                    normalized.avatar.faces, solver.scope_margin);
@@ -465,6 +457,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   }
   report.shrink_depth = shrunk.depth;
   report.shrink_medial_vertices = shrunk.medial_vertices;
+  report.shrink_full_depth_grid = shrunk.full_depth_grid;
   report.seconds.shrink = shrink_timer.seconds();
   run.progress.log("shrink", "{} shrink certified free of the garment in {:.2f} s",
                    to_string(report.shrink_mode), report.seconds.shrink);

@@ -50,6 +50,15 @@ ShrinkMode parse_shrink_mode(const std::string& name) {
   throw InputError("", 0, fmt::format("unknown shrink mode '{}' (levelset or skeleton)", name));
 }
 
+SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_size,
+                                       const ProgressCallback& progress) {
+  SignedDistanceOptions options;
+  options.exterior_band = kDistanceBand;
+  options.full_depth = false;
+  options.progress = progress;
+  return build_signed_distance(avatar, voxel_size, options);
+}
+
 ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
                            const ProgressCallback& progress) {
@@ -58,7 +67,19 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
       throw std::invalid_argument("the level-set shrink needs the avatar's signed distance");
     LevelsetShrinkOptions options;
     options.progress = progress;
-    return shrink_levelset(scene.avatar, scene.garment, *grid, options);
+    try {
+      return shrink_levelset(scene.avatar, scene.garment, *grid, options);
+    } catch (const ShrinkBandTooShallowError&) {
+      if (grid->full_depth()) throw;
+    }
+    SignedDistanceOptions full;
+    full.exterior_band = kDistanceBand;
+    full.progress = progress;
+    ShrinkResult result =
+        shrink_levelset(scene.avatar, scene.garment,
+                        build_signed_distance(scene.avatar, grid->voxel_size(), full), options);
+    result.full_depth_grid = true;
+    return result;
   }
   require_skeletons_for(mode, scene.source_skeleton.has_value(), "");
   SkeletonShrinkOptions options;
@@ -95,10 +116,8 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   try {
     if (options.mode == ShrinkMode::kLevelset) {
       const Stopwatch grid_stopwatch;
-      SignedDistanceOptions grid_options;
-      grid_options.progress = options.progress;
       const SignedDistanceGrid grid =
-          build_signed_distance(avatar, options.voxel_size, grid_options);
+          build_distance_grid(avatar, options.voxel_size, options.progress);
       run.grid_seconds = grid_stopwatch.seconds();
       run.shrink =
           shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, options.progress);
@@ -106,6 +125,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
       report["grid_seconds"] = run.grid_seconds;
       report["grid_active_voxels"] = grid.active_voxel_count();
       report["grid_bytes"] = grid.memory_bytes();
+      report["full_depth_grid"] = run.shrink.full_depth_grid;
     } else {
       run.shrink =
           shrink_avatar(options.mode, normalized, scene.skin_weights, nullptr, options.progress);

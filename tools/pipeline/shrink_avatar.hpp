@@ -20,8 +20,20 @@ const char* to_string(ShrinkMode mode);
 /// The mode named `name`. @throw InputError for any other name.
 ShrinkMode parse_shrink_mode(const std::string& name);
 
+/// How far outside the avatar the pipeline's signed-distance grid holds distances, and
+/// first also how deep inside (normalized units): the fit pulls garment points only from
+/// within it, and most level-set shrinks need no deeper erosion.
+constexpr double kDistanceBand = 0.1;
+
+/// The avatar's signed distance as the pipeline builds it: a narrow band of kDistanceBand
+/// on both sides of the surface.
+SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_size,
+                                       const ProgressCallback& progress = {});
+
 /// Shrinks the normalized avatar until it is certified free of the garment.
-/// @param grid the avatar's signed distance, at full depth; read in levelset mode only.
+/// @param grid the avatar's signed distance (build_distance_grid); read in levelset mode
+///        only. When the shrink needs to erode deeper than its band, a full-depth grid is
+///        built for it (ShrinkResult::full_depth_grid).
 /// @param skin_weights #joints × #avatar vertices, or empty (skeleton mode only).
 /// @throw InputError in skeleton mode without skeletons; std::invalid_argument in levelset
 ///        mode without a grid; NoValidShrinkError when no shrink is found.

@@ -1,0 +1,61 @@
+// Skeleton-free scenes of every family, at several resolutions, offsets and rigid motions:
+// each is certified, keeps its size and shape, and both solves converge in few steps.
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "extremes_support.hpp"
+#include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
+
+namespace gr {
+namespace {
+
+/// Newton steps of the inflation and the fit together: a few hundred at most.
+constexpr int kMaxNewtonSteps = 300;
+
+struct Case {
+  SkeletonFreeFamily family;
+  SkeletonFreeVariant variant;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const SkeletonFreeFamily family : all_skeleton_free_families()) {
+    all.push_back({family, {8, 0.0, 0.0, 1.0, Vector3d::Zero()}});
+    all.push_back({family, {20, 0.02, 0.0, 1.0, Vector3d::Zero()}});
+    // Another up axis, centimetres-like units and a far origin.
+    all.push_back({family, {12, 0.0, 40.0, 37.0, Vector3d(5.0, -3.0, 2.0)}});
+  }
+  return all;
+}
+
+}  // namespace
+
+TEST_CASE("skeleton-free families: certified, size and shape kept, converged in few steps",
+          "[pipeline][skeleton-free]") {
+  const std::vector<Case> all = cases();
+  const auto index = GENERATE_COPY(range(std::size_t(0), all.size()));
+  const Case& c = all[index];
+  const SkeletonFreeScene scene = make_skeleton_free_scene(c.family, c.variant);
+  INFO(scene.name);
+  const std::filesystem::path dir = test::fresh_temp_dir("skeleton_free");
+  test::write_mesh_obj(dir / "garment.obj", scene.garment);
+  test::write_mesh_obj(dir / "avatar.obj", scene.avatar);
+  RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
+                                                (dir / "avatar.obj").string(), dir / "out");
+  options.quality = Quality::kBalanced;
+  const RetargetResult result = test::run_and_check(options);
+  const RetargetReport& r = result.report;
+  INFO(result.message);
+  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(r.certified);
+  CHECK(r.shape.scale >= 0.9);
+  CHECK(r.shape.scale <= 1.1);
+  CHECK(r.shape.mean_edge_change <= 0.1);
+  CHECK(r.inflate_status == "snapped");
+  CHECK(r.fit_status == "converged");
+  CHECK(r.inflate_newton_iterations + r.fit_newton_iterations <= kMaxNewtonSteps);
+}
+
+}  // namespace gr
