@@ -1,3 +1,5 @@
+#include <string>
+
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
@@ -135,4 +137,38 @@ TEST_CASE("anchor energy: a vertex id outside the garment is rejected", "[energi
   const DofLayout layout{static_cast<int>(grid.vertices.rows()), false};
   CHECK_THROWS_AS(AnchorEnergy(grid.vertices, {0, static_cast<int>(grid.vertices.rows())}, layout),
                   std::invalid_argument);
+}
+
+TEST_CASE("anchor energy with weights (the tether): derivatives match finite differences",
+          "[energies][anchor][grad][hess]") {
+  const TriangleMesh grid = test::curved_grid(4);
+  const int n = static_cast<int>(grid.vertices.rows());
+  const std::vector<double> shares = vertex_area_shares(grid.vertices, grid.faces);
+  double total = 0.0;
+  for (Eigen::Index f = 0; f < grid.faces.rows(); ++f) {
+    const Vector3d a = grid.vertices.row(grid.faces(f, 0)).transpose();
+    total += 0.5 * (grid.vertices.row(grid.faces(f, 1)).transpose() - a)
+                       .cross(grid.vertices.row(grid.faces(f, 2)).transpose() - a)
+                       .norm();
+  }
+  double share_sum = 0.0;
+  for (double s : shares) share_sum += s;
+  CHECK(share_sum == Approx(total).epsilon(1e-12));
+
+  std::vector<int> all(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v) all[static_cast<std::size_t>(v)] = v;
+  const DofLayout layout{n, false, 1.0};
+  const AnchorEnergy tether(grid.vertices, all, layout, shares, "tether");
+  CHECK(std::string(tether.name()) == "tether");
+  std::srand(5);
+  const MatrixX3d V = grid.vertices + 0.1 * MatrixX3d::Random(n, 3);
+  double expected = 0.0;
+  for (int v = 0; v < n; ++v)
+    expected +=
+        0.5 * shares[static_cast<std::size_t>(v)] * (V.row(v) - grid.vertices.row(v)).squaredNorm();
+  CHECK(tether.value(V, 1.0) == Approx(expected).epsilon(1e-14));
+  test::check_position_energy(tether, test::flatten(V), 1e-6);
+
+  CHECK_THROWS_AS(AnchorEnergy(grid.vertices, {0, 1}, layout, {1.0}), std::invalid_argument);
+  CHECK_THROWS_AS(AnchorEnergy(grid.vertices, {0}, layout, {-1.0}), std::invalid_argument);
 }

@@ -59,3 +59,23 @@ TEST_CASE("skeleton-free families: certified, size and shape kept, converged in 
 }
 
 }  // namespace gr
+
+namespace gr {
+
+TEST_CASE("skeleton-free: an erosion deeper than the distance band builds a full-depth grid",
+          "[pipeline][skeleton-free][shrink]") {
+  // The sphere bulges 0.15 through a sleeve of radius 0.85: deeper than the band of 0.1.
+  const std::filesystem::path dir = test::fresh_temp_dir("skeleton_free_deep");
+  test::write_mesh_obj(dir / "garment.obj", test::open_cylinder(24, 8, 0.85, -0.5, 0.5));
+  test::write_mesh_obj(dir / "avatar.obj", test::uv_sphere(32, 16));
+  RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
+                                                (dir / "avatar.obj").string(), dir / "out");
+  options.overrides.voxel_size = 0.03;
+  const RetargetResult result = test::run_and_check(options);
+  INFO(result.message);
+  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.report.shrink_full_depth_grid);
+  CHECK(result.report.shrink_depth > kDistanceBand);
+}
+
+}  // namespace gr
