@@ -28,6 +28,11 @@ AnchorEnergy::AnchorEnergy(const Eigen::Ref<const MatrixX3d>& rest, std::vector<
   assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
 }
 
+void AnchorEnergy::set_rest(const Eigen::Ref<const MatrixX3d>& positions) {
+  for (std::size_t k = 0; k < vertices_.size(); ++k)
+    rest_.row(static_cast<Eigen::Index>(k)) = positions.row(vertices_[k]);
+}
+
 double AnchorEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
   return assembly_.value([&](int e) {
     return 0.5 * weights_[e] * (V.row(vertices_[e]) - rest_.row(e)).squaredNorm();

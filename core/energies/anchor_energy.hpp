@@ -34,6 +34,8 @@ class AnchorEnergy : public EnergyTerm {
                const char* name = "anchor");
 
   const std::vector<int>& vertices() const { return vertices_; }
+  /// Moves every anchored vertex's rest place to its row of `positions` (#Vg×3).
+  void set_rest(const Eigen::Ref<const MatrixX3d>& positions);
 
   const char* name() const override { return name_; }
   double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;

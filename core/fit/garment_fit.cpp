@@ -1,12 +1,33 @@
 #include "core/fit/garment_fit.hpp"
 
+#include <algorithm>
+#include <vector>
+
+#include "core/mesh/unique_edges.hpp"
+
 namespace gr {
+
+double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const MatrixX3d>& deformed) {
+  const MatrixX2i edges = unique_edges(rest.faces);
+  std::vector<double> ratios;
+  ratios.reserve(static_cast<std::size_t>(edges.rows()));
+  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+    const double length = (rest.vertices.row(edges(e, 0)) - rest.vertices.row(edges(e, 1))).norm();
+    if (length > 0.0)
+      ratios.push_back((deformed.row(edges(e, 0)) - deformed.row(edges(e, 1))).norm() / length);
+  }
+  if (ratios.empty()) return 1.0;
+  const auto middle = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+  std::nth_element(ratios.begin(), middle, ratios.end());
+  return *middle;
+}
 
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
                       const RetargetParameters& parameters, const NewtonCallback& on_newton_step) {
   RetargetParameters fit_parameters = parameters;
   fit_parameters.dhat = parameters.fit_support();
-  GarmentProblem problem(scene, fit_parameters, GarmentProblem::Stage::kFit);
+  GarmentProblem problem(scene, fit_parameters, GarmentProblem::Stage::kFit,
+                         median_edge_ratio(scene.garment, inflated));
   Eigen::VectorXd x = problem.layout().pack(1.0, inflated);
   ProjectedNewton newton(parameters.newton);
   FitResult result;

@@ -28,6 +28,10 @@ struct FitResult {
   std::vector<int> loop_sizes;
 };
 
+/// Median over the edges of `rest` (of positive length) of deformed length / rest length;
+/// 1 when no edge has a positive length.
+double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const MatrixX3d>& deformed);
+
 /// Step 3: t fixed at 1, one projected Newton solve on the garment vertices with L_surf
 /// (rest shape: the initial garment scene.garment) + L_contact + L_pos at t = 1 (with
 /// skeletons) + w_fit L_fit.

@@ -45,6 +45,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
 
   while (result.rounds < parameters.max_al_rounds) {
     ++result.rounds;
+    problem.tether_to(x);
     const NewtonResult solve = newton.minimize(problem, x, on_newton_step);
     result.newton_iterations += solve.iterations;
     if (solve.status == SolverStatus::kNonFiniteEnergy)

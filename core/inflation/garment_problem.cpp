@@ -37,7 +37,7 @@ ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters
 }  // namespace
 
 GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters,
-                               Stage stage)
+                               Stage stage, double rest_scale)
     : stage_(stage), parameters_(parameters), layout_(layout_for(checked(scene, stage), stage)) {
   add_term<SurfaceShapeEnergy>(parameters.w_surf, scene.garment, layout_);
   contact_ = &add_term<ContactEnergy>(parameters.w_contact, contact_mesh_for(scene, parameters),
@@ -49,13 +49,17 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
                                     s.source_joints, s.target_joints, s.bones, s.skirt);
     position_ =
         &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_, layout_);
+    if (stage == Stage::kFit && parameters.w_fit_stretch > 0.0)
+      add_term<StretchEnergy>(
+          parameters.w_fit_stretch,
+          TriangleMesh{rest_scale * scene.garment.vertices, scene.garment.faces}, layout_);
   } else if (stage == Stage::kInflation) {
     if (parameters.w_tether > 0.0) {
       std::vector<int> all(static_cast<std::size_t>(scene.garment.vertices.rows()));
       std::iota(all.begin(), all.end(), 0);
-      add_term<AnchorEnergy>(parameters.w_tether, scene.garment.vertices, std::move(all), layout_,
-                             vertex_area_shares(scene.garment.vertices, scene.garment.faces),
-                             "tether");
+      tether_ = &add_term<AnchorEnergy>(
+          parameters.w_tether, scene.garment.vertices, std::move(all), layout_,
+          vertex_area_shares(scene.garment.vertices, scene.garment.faces), "tether");
     }
   } else {
     if (parameters.w_stretch > 0.0)
@@ -76,6 +80,10 @@ std::vector<std::string> GarmentProblem::term_names() const {
   std::vector<std::string> names;
   for (const WeightedTerm& weighted : terms_) names.emplace_back(weighted.term->name());
   return names;
+}
+
+void GarmentProblem::tether_to(const Eigen::VectorXd& x) {
+  if (tether_) tether_->set_rest(layout_.garment(x));
 }
 
 std::vector<double> GarmentProblem::loop_offsets(const Eigen::VectorXd& x) const {

@@ -50,7 +50,10 @@ class GarmentProblem : public Problem {
   /// @throw std::invalid_argument when A0 and A differ in size, or the fit stage has no
   ///        distance field, or the fit sample count is not 1, 3 or 6.
   /// @throw InputError when a skirt's skeleton has no recognisable legs.
-  GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters, Stage stage);
+  /// @param rest_scale the fit's stretch term (with skeletons) takes the input garment
+  ///        scaled by this as its rest shape.
+  GarmentProblem(const GarmentScene& scene, const RetargetParameters& parameters, Stage stage,
+                 double rest_scale = 1.0);
   GarmentProblem(const GarmentProblem&) = delete;
   GarmentProblem& operator=(const GarmentProblem&) = delete;
 
@@ -64,6 +67,10 @@ class GarmentProblem : public Problem {
   /// Per loop of loop_bones(), the root mean square over its vertices of s(t, x) - s_rest
   /// at x: how far (in lengths of its bone) the loop sits from its place along the bone.
   std::vector<double> loop_offsets(const Eigen::VectorXd& x) const;
+  /// A skeleton-free inflation tethers the garment to where x has it: a proximal term for
+  /// the next solve, which keeps a free-floating garment in place without resisting,
+  /// round after round, the motion the growing avatar needs. No effect otherwise.
+  void tether_to(const Eigen::VectorXd& x);
 
   /// Whether snapping t to 1 (avatar A(t) → A, garment still) is collision free by CCD.
   bool is_valid_snapping(const Eigen::VectorXd& x);
@@ -113,6 +120,7 @@ class GarmentProblem : public Problem {
   std::vector<WeightedTerm> terms_;
   ContactEnergy* contact_ = nullptr;          ///< in terms_; also bounds steps (CCD)
   const PositionEnergy* position_ = nullptr;  ///< in terms_ with skeletons
+  AnchorEnergy* tether_ = nullptr;            ///< in terms_ in a skeleton-free inflation
   std::vector<LoopBone> loop_bones_;
   Eigen::VectorXd term_gradient_;
   /// Sum of the terms whose Hessian pattern is fixed, in their union pattern.

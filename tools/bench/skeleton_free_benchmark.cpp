@@ -24,8 +24,8 @@ void write_obj(const fs::path& path, const gr::TriangleMesh& mesh) {
   gr::write_file_atomically(path.string(), [&](std::ostream& out) {
     out.precision(17);
     for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
-      out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' '
-          << mesh.vertices(v, 2) << '\n';
+      out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2)
+          << '\n';
     for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
       out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' '
           << mesh.faces(f, 2) + 1 << '\n';
@@ -36,7 +36,8 @@ void write_obj(const fs::path& path, const gr::TriangleMesh& mesh) {
 /// scaled and moved (other axes, units and origin).
 std::vector<gr::SkeletonFreeVariant> variants() {
   std::vector<gr::SkeletonFreeVariant> all;
-  for (const int resolution : {8, 16, 28}) all.push_back({resolution, 0.0, 0.0, 1.0, gr::Vector3d::Zero()});
+  for (const int resolution : {8, 16, 28})
+    all.push_back({resolution, 0.0, 0.0, 1.0, gr::Vector3d::Zero()});
   all.push_back({16, 0.02, 0.0, 1.0, gr::Vector3d::Zero()});
   all.push_back({16, 0.0, 40.0, 37.0, gr::Vector3d(5.0, -3.0, 2.0)});
   return all;
@@ -79,14 +80,14 @@ int main(int argc, char** argv) {
       const gr::RetargetResult result = gr::run_retarget(options);
       const double seconds = stopwatch.seconds();
       const gr::RetargetReport& r = result.report;
-      csv << fmt::format("{},{},{:g},{:g},{:g},{},{},{:.3f},{},{},{},{},{:.4f},{:.4f},{:.4f},"
-                         "{:.4f},{:.4f},{}\n",
-                         gr::to_string(family), variant.resolution, variant.offset,
-                         variant.turn_degrees, variant.scale, static_cast<int>(result.status),
-                         r.certified ? 1 : 0, seconds, r.inflate_newton_iterations,
-                         r.fit_newton_iterations, r.inflate_status, r.fit_status, r.shape.scale,
-                         r.shape.mean_edge_change, r.shape.p95_edge_change, r.shape.area_change,
-                         r.shape.loop_displacement, r.shrink_full_depth_grid ? 1 : 0);
+      csv << fmt::format(
+          "{},{},{:g},{:g},{:g},{},{},{:.3f},{},{},{},{},{:.4f},{:.4f},{:.4f},"
+          "{:.4f},{:.4f},{}\n",
+          gr::to_string(family), variant.resolution, variant.offset, variant.turn_degrees,
+          variant.scale, static_cast<int>(result.status), r.certified ? 1 : 0, seconds,
+          r.inflate_newton_iterations, r.fit_newton_iterations, r.inflate_status, r.fit_status,
+          r.shape.scale, r.shape.mean_edge_change, r.shape.p95_edge_change, r.shape.area_change,
+          r.shape.loop_displacement, r.shrink_full_depth_grid ? 1 : 0);
       std::printf("| %s | %.2f | %d + %d | %s | %s | %.3f | %.3f | %.3f |\n", scene.name.c_str(),
                   seconds, r.inflate_newton_iterations, r.fit_newton_iterations,
                   r.fit_status.c_str(), r.certified ? "yes" : "no", r.shape.scale,

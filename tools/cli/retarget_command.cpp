@@ -76,6 +76,10 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
                   "Weight pulling every garment vertex to its input place (per unit area) "
                   "during the inflation, without skeletons only (default 1; 0 switches it off)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--w-fit-stretch", o.w_fit_stretch,
+                  "Edge-stretch weight in the fit against the input garment at its inflated "
+                  "size, with skeletons only (default 0.03; 0 switches it off)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-newton-iterations", o.max_newton_iterations,
                   "Iteration cap per Newton solve")
       ->check(CLI::PositiveNumber);

@@ -63,6 +63,7 @@ void ParameterOverrides::apply_to(PipelineParameters& p) const {
   if (w_stretch) s.w_stretch = *w_stretch;
   if (w_anchor) s.w_anchor = *w_anchor;
   if (w_tether) s.w_tether = *w_tether;
+  if (w_fit_stretch) s.w_fit_stretch = *w_fit_stretch;
   if (eps_tol) {
     s.newton.gradient_tolerance = *eps_tol;
     s.newton.energy_tolerance = energy_tolerance_for(*eps_tol);

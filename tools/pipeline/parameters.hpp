@@ -46,7 +46,7 @@ double energy_tolerance_for(double eps_tol);
 /// Individual overrides given on the command line; unset ones keep the preset's value.
 struct ParameterOverrides {
   std::optional<double> dhat, fit_dhat, w_contact, w_fit, w_pos, w_stretch, w_anchor, w_tether,
-      eps_tol, voxel_size, ccd_min_separation_ratio, inflation_step_length;
+      w_fit_stretch, eps_tol, voxel_size, ccd_min_separation_ratio, inflation_step_length;
   std::optional<int> max_newton_iterations, max_al_rounds, fit_samples;
   std::optional<bool> self_contact, self_contact_everywhere;
 

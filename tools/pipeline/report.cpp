@@ -31,6 +31,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"w_stretch", p.solver.w_stretch},
         {"w_anchor", p.solver.w_anchor},
         {"w_tether", p.solver.w_tether},
+        {"w_fit_stretch", p.solver.w_fit_stretch},
         {"eps_tol", p.solver.newton.gradient_tolerance},
         {"step_tolerance", p.solver.newton.step_tolerance},
         {"energy_tolerance", p.solver.newton.energy_tolerance},

@@ -41,6 +41,8 @@ TEST_CASE("extremes: barrier support dhat from 1e-5 to 1e-1", "[pipeline][extrem
   options.overrides.max_al_rounds = 4;
   // The thinnest barrier never converges (below); fewer steps keep its failure quick.
   if (dhat < 1e-4) options.overrides.max_newton_iterations = 100;
+  // At 1e-4 the proximal tether (w_tether) slows the push on t: it needs more rounds.
+  if (dhat == 1e-4) options.overrides.max_al_rounds = 8;
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
   if (dhat < 1e-4 && result.status == RetargetStatus::kSolverFailure) {
@@ -55,7 +57,9 @@ TEST_CASE("extremes: barrier support dhat from 1e-5 to 1e-1", "[pipeline][extrem
   const nlohmann::json report = read_report(result);
   // The solver's avatar is rounded to the lattice: no pair comes within the rounding.
   const double lattice = report["parameters"]["lattice"].get<double>();
-  CHECK(report["min_distance"]["normalized"].get<double>() >= std::sqrt(3.0) * lattice);
+  // A distance between points of coordinates near 1 carries a few 1e-16 of rounding: a
+  // pair stopped by the CCD exactly at its separation may read that much below it.
+  CHECK(report["min_distance"]["normalized"].get<double>() >= std::sqrt(3.0) * lattice - 1e-15);
 }
 
 TEST_CASE("extremes: barrier stiffness from 1e4 to 1e12", "[pipeline][extremes][parameters]") {

@@ -50,8 +50,9 @@ void orient_away_from(TriangleMesh& mesh, const Vector3d& inside) {
 void orient_outward(TriangleMesh& mesh) {
   double volume = 0.0;
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    volume += mesh.vertices.row(mesh.faces(f, 0))
-                  .dot(mesh.vertices.row(mesh.faces(f, 1)).cross(mesh.vertices.row(mesh.faces(f, 2))));
+    volume +=
+        mesh.vertices.row(mesh.faces(f, 0))
+            .dot(mesh.vertices.row(mesh.faces(f, 1)).cross(mesh.vertices.row(mesh.faces(f, 2))));
   if (volume < 0.0) mesh.faces.col(1).swap(mesh.faces.col(2));
 }
 
@@ -126,8 +127,8 @@ TriangleMesh box(const Vector3d& half) {
     mesh.vertices.row(c) << (c & 1 ? half.x() : -half.x()), (c & 2 ? half.y() : -half.y()),
         (c & 4 ? half.z() : -half.z());
   mesh.faces.resize(12, 3);
-  mesh.faces << 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3, 0, 4, 5, 0, 5, 1, 2, 3, 7, 2, 7, 6, 0, 1, 3,
-      0, 3, 2, 4, 6, 7, 4, 7, 5;
+  mesh.faces << 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3, 0, 4, 5, 0, 5, 1, 2, 3, 7, 2, 7, 6, 0, 1, 3, 0,
+      3, 2, 4, 6, 7, 4, 7, 5;
   orient_away_from(mesh, Vector3d::Zero());
   return mesh;
 }
@@ -146,8 +147,7 @@ TriangleMesh sleeve(int around, double radius, double z0, double z1, double x) {
   const int rings = std::max(2, static_cast<int>(std::lround((z1 - z0) / cell)));
   return quad_grid(rings, around, true, [&](int i, int j) {
     const double phi = 2.0 * kPi * j / around;
-    return Vector3d(x + radius * std::cos(phi), radius * std::sin(phi),
-                    z0 + (z1 - z0) * i / rings);
+    return Vector3d(x + radius * std::cos(phi), radius * std::sin(phi), z0 + (z1 - z0) * i / rings);
   });
 }
 
@@ -155,9 +155,9 @@ void move(TriangleMesh& mesh, const SkeletonFreeVariant& variant) {
   const Eigen::Matrix3d turn =
       Eigen::AngleAxisd(variant.turn_degrees * kPi / 180.0, Vector3d::Ones().normalized())
           .toRotationMatrix();
-  mesh.vertices = ((variant.scale * mesh.vertices * turn.transpose()).rowwise() +
-                   variant.origin.transpose())
-                      .eval();
+  mesh.vertices =
+      ((variant.scale * mesh.vertices * turn.transpose()).rowwise() + variant.origin.transpose())
+          .eval();
 }
 
 }  // namespace
@@ -186,8 +186,7 @@ SkeletonFreeScene make_skeleton_free_scene(SkeletonFreeFamily family,
   if (!(variant.scale > 0.0)) throw std::invalid_argument("skeleton-free scene: scale must be > 0");
   SkeletonFreeScene scene;
   scene.name = fmt::format("{} resolution {} offset {:g} turn {:g} scale {:g}", to_string(family),
-                           variant.resolution, variant.offset, variant.turn_degrees,
-                           variant.scale);
+                           variant.resolution, variant.offset, variant.turn_degrees, variant.scale);
   const int n = variant.resolution;
   const double d = variant.offset;
   // Each body pokes through its garment by a few hundredths of its size.
