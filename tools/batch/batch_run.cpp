@@ -73,8 +73,9 @@ class BatchProgress {
                                 ? std::string(remaining == 0 ? "0s" : "?")
                                 : duration_text(clock_.seconds() / static_cast<double>(computed) *
                                                 static_cast<double>(remaining));
-    const std::string counts = fmt::format("{}/{} done, {} failed, {} left, ETA {}", done_, total_,
-                                           failed_, remaining, eta);
+    const std::string counts =
+        fmt::format("{}/{} done, {} failed, {} left, {} elapsed, ETA {}", done_, total_, failed_,
+                    remaining, duration_text(clock_.seconds()), eta);
     if (terminal_) {
       const int filled = static_cast<int>(kBarWidth * done_ / std::max<std::size_t>(total_, 1));
       std::fprintf(stderr, "\r\033[K[%s%s] %s", std::string(filled, '#').c_str(),

@@ -83,6 +83,21 @@ TEST_CASE("batch runs each job in its own folder, records failures and reuses ce
   CHECK(summary_row(out, "dress")[3] == "yes");
   CHECK(read_text(out / "dress" / "garment.obj") == garment);
   CHECK(nlohmann::json::parse(read_text(out / "dress" / "job.json")) == record);
+
+  // Another option is another job: it runs again and its folder replaces the old one.
+  std::string text = read_text(manifest);
+  text.replace(text.find("\"quality\""), 0, "\"max_al_rounds\": 40, ");
+  std::ofstream(manifest) << text;
+  const gr::test::CliRun third =
+      run_cli({"batch", manifest.string(), "--out", out.string(), "--quiet"}, "batch_third");
+  INFO(third.out << third.err);
+  CHECK_THAT(third.out, Catch::Contains("2 jobs: 1 computed, 0 reused, 1 failed"));
+  CHECK(summary_row(out, "dress")[3] == "no");
+  const nlohmann::json rerun = nlohmann::json::parse(read_text(out / "dress" / "job.json"));
+  CHECK(rerun["key"] != record["key"]);
+  CHECK(rerun["options"] == nlohmann::json{{"max-al-rounds", 40}, {"quality", "fast"}});
+  for (const auto& entry : fs::directory_iterator(out))
+    CHECK(entry.path().filename().string().rfind(".tmp-", 0) != 0);
 }
 
 TEST_CASE("batch refuses a manifest naming an option retarget does not have", "[batch][cli]") {
