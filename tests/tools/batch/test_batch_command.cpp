@@ -114,3 +114,30 @@ TEST_CASE("batch refuses a manifest naming an option retarget does not have", "[
                           Catch::Contains("\"w-fitt\" is not a retarget option"));
   CHECK_FALSE(fs::exists(dir / "out" / "a"));
 }
+
+TEST_CASE("batch records a job whose process crashes and goes on", "[batch][cli]") {
+  const fs::path dir = gr::test::fresh_temp_dir("batch_crash");
+  const std::string scene = gr::test::project_file("tools/scenes/dress_form");
+  std::ofstream(dir / "manifest.jsonl")
+      << "{\"id\": \"a\", \"garment\": \"" << scene << "/garment.obj\", \"avatar\": \"" << scene
+      << "/avatar.obj\"}\n"
+      << "{\"id\": \"b\", \"garment\": \"" << scene << "/garment.obj\", \"avatar\": \"" << scene
+      << "/avatar.obj\", \"quality\": \"fast\"}\n";
+  // A stand-in for the program that dies of a signal, as a crashing job would.
+  std::ofstream(dir / "crash.sh") << "#!/bin/sh\nkill -SEGV $$\n";
+  fs::permissions(dir / "crash.sh", fs::perms::owner_all);
+  const fs::path out = dir / "out";
+  const gr::test::CliRun run = run_cli({"batch", (dir / "manifest.jsonl").string(), "--out",
+                                        out.string(), "--program", (dir / "crash.sh").string()},
+                                       "batch_crash");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 8);
+  CHECK_THAT(run.out, Catch::Contains("2 jobs: 0 computed, 0 reused, 2 failed"));
+  for (const char* id : {"a", "b"}) {
+    const std::vector<std::string> row = summary_row(out, id);
+    REQUIRE(row.size() == 13);
+    CHECK(row[1] == "crashed");
+    CHECK(row[2] == "-1");
+    CHECK_THAT(row[12], Catch::Contains("killed by signal 11"));
+  }
+}
