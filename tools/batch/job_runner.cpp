@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -50,7 +52,7 @@ int run_child(const std::vector<std::string>& arguments, const std::string& fold
     dup2(log, STDOUT_FILENO);
     dup2(log, STDERR_FILENO);
     if (chdir(folder.c_str()) != 0) _exit(127);
-    const int null_input = open("/dev/null", O_RDONLY);
+    const int null_input = open("/dev/null", O_RDONLY | O_CLOEXEC);
     if (null_input >= 0) dup2(null_input, STDIN_FILENO);
     execv(argv[0], argv.data());
     static const char message[] = "garment-retarget: error: cannot execute the program\n";
@@ -86,16 +88,29 @@ fs::path temporary_folder(const fs::path& out, const std::string& id) {
 }
 
 /// Moves `folder` to `destination` in one step, replacing what was there; the old folder
-/// ends up at `folder`, which is then removed.
+/// ends up at `folder`, which is then removed. Where the file system cannot exchange two
+/// names (some network file systems), the old folder is moved aside first: a crash between
+/// the two renames leaves no `destination`, which the next batch computes again, never a
+/// partial one.
 void swap_into_place(const fs::path& folder, const fs::path& destination) {
+  const auto fail = [&]() {
+    return OutputError(fmt::format("{}: cannot move the job's outputs into place: {}",
+                                   destination.string(), std::strerror(errno)));
+  };
+  std::error_code ignored;
   if (renameat2(AT_FDCWD, folder.c_str(), AT_FDCWD, destination.c_str(), RENAME_EXCHANGE) == 0) {
-    std::error_code ignored;
     fs::remove_all(folder, ignored);
     return;
   }
-  if (errno == ENOENT && std::rename(folder.c_str(), destination.c_str()) == 0) return;
-  throw OutputError(fmt::format("{}: cannot move the job's outputs into place: {}",
-                                destination.string(), std::strerror(errno)));
+  if (errno == ENOENT) {
+    if (std::rename(folder.c_str(), destination.c_str()) != 0) throw fail();
+    return;
+  }
+  if (errno != EINVAL && errno != ENOSYS) throw fail();
+  const fs::path aside = folder.string() + "-old";
+  if (std::rename(destination.c_str(), aside.c_str()) != 0) throw fail();
+  if (std::rename(folder.c_str(), destination.c_str()) != 0) throw fail();
+  fs::remove_all(aside, ignored);
 }
 
 bool certified_outputs(const fs::path& folder, const nlohmann::json& record,
@@ -150,7 +165,7 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
   std::string key;
   try {
     key = job_key(job);
-  } catch (const InputError& e) {
+  } catch (const InputError&) {
     key.clear();  // an unreadable input: the job runs and records the error
   }
   if (!key.empty()) {
