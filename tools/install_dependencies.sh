@@ -8,7 +8,7 @@ set -euo pipefail
 # the build stopped using ATLAS. libclang-rt-14-dev: libFuzzer and the sanitizers' runtimes
 # for the fuzz test (clang only recommends them, and recommends are not installed).
 packages=(
-  build-essential cmake ninja-build python3 python3-venv clang clang-format libclang-rt-14-dev
+  build-essential cmake ninja-build python3 python3-venv python3-dev clang clang-format libclang-rt-14-dev
   libeigen3-dev libsuitesparse-dev libatlas3-base libopenblas0-pthread libsleef-dev
   libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
   catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev

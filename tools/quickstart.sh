@@ -26,9 +26,15 @@ case "${1:-}" in
     echo "results in $out"
     ;;
   test)
+    # The Python package's tests run beside CTest, in a virtual environment of the
+    # system's Python that holds what they need from PyPI.
+    venv="$build/python-venv"
+    [ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv "$venv"
+    "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$root/python/requirements-test.txt"
+    cmake -S "$root" -B "$build" -DGR_PYTHON=ON -DPython_EXECUTABLE="$venv/bin/python" >/dev/null
     cmake --build "$build" -j "$jobs"
-    cd "$build"
-    ctest --output-on-failure -j "$jobs"
+    (cd "$build" && ctest --output-on-failure -j "$jobs")
+    PYTHONPATH="$build/python" "$venv/bin/python" -m pytest -q -p no:cacheprovider "$root/python/tests"
     ;;
   *)
     echo "usage: $0 run|test" >&2

@@ -1,11 +1,14 @@
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 namespace gr {
 
+struct BatchJob;
 struct ScenePaths;
 struct ShapeThresholds;
 
@@ -21,5 +24,18 @@ void add_shape_check_options(CLI::App& command, ShapeThresholds& thresholds);
 void add_retarget_command(CLI::App& root, int& exit_code);
 void add_validate_command(CLI::App& root, int& exit_code);
 void add_shrink_command(CLI::App& root, int& exit_code);
+void add_batch_command(CLI::App& root, int& exit_code);
+
+/// Checks that each manifest option of `jobs` names a retarget option, a flag given as a
+/// boolean and any other option given a value.
+/// @throw InputError naming `manifest` and the job's line otherwise.
+void check_batch_options(const std::string& manifest, const std::vector<BatchJob>& jobs);
+
+/// The path of the running executable (/proc/self/exe).
+std::string current_program_path();
+
+/// The whole command line with every subcommand; the callback of the one parsed stores its
+/// exit code in `exit_code`.
+std::unique_ptr<CLI::App> make_command_line(int& exit_code);
 
 }  // namespace gr

@@ -14,6 +14,7 @@ enum ExitCode : int {
   /// certified and written, but the garment's shape changed beyond the shape thresholds
   /// (retarget), or the garment's shape differs from --source beyond them (validate)
   kExitShapeChanged = 7,
+  kExitBatchJobsFailed = 8,  ///< batch: some jobs did not end certified (see its summary.csv)
 };
 
 }  // namespace gr

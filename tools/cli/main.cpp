@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <new>
 
 #include <CLI/CLI.hpp>
@@ -9,15 +10,9 @@
 #include "tools/cli/exit_codes.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{
-      "garment-retarget: refit a garment onto another avatar and certify that the "
-      "result intersects neither the avatar nor itself."};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "garment-retarget " GR_VERSION);
   int exit_code = gr::kExitSuccess;
-  gr::add_retarget_command(app, exit_code);
-  gr::add_validate_command(app, exit_code);
-  gr::add_shrink_command(app, exit_code);
+  const std::unique_ptr<CLI::App> command_line = gr::make_command_line(exit_code);
+  CLI::App& app = *command_line;
 
   try {
     app.parse(argc, argv);

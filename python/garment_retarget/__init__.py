@@ -1,0 +1,212 @@
+"""Refit garments onto avatars and certify the results, from Python.
+
+Each function runs the command of the same name of ``garment-retarget`` in this process
+(``batch`` starts one process per job, as the command does) and returns what it wrote as
+dicts and NumPy arrays. Meshes are file paths or ``(V, F)`` pairs of arrays (#V×3 floats,
+#F×3 0-based ints). Errors raise ``UsageError`` (a bad option), ``InputError`` (a bad
+input file; both are ``ValueError``) or ``OutputError`` (an ``OSError``) with the command
+line's messages.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any, Callable, Iterable
+
+import numpy as np
+
+from ._core import InputError, OutputError, UsageError, read_mesh, run_command, version
+
+__all__ = [
+    "InputError",
+    "OutputError",
+    "UsageError",
+    "batch",
+    "program_path",
+    "read_mesh",
+    "retarget",
+    "shrink",
+    "validate",
+    "version",
+    "write_mesh",
+]
+__version__ = version
+
+#: Exit codes of the command line (README, "Exit codes") by name.
+STATUS_BY_EXIT_CODE = {
+    0: "certified",
+    1: "not_certified",
+    3: "no_valid_shrink",
+    4: "solver_failure",
+    7: "shape_changed",
+    8: "jobs_failed",
+}
+
+
+def program_path() -> str:
+    """The ``garment-retarget`` program installed with this package, which batch jobs run."""
+    path = Path(__file__).with_name("garment-retarget")
+    if not path.exists():
+        raise OutputError(f"{path}: the garment-retarget program is missing from the package")
+    return str(path)
+
+
+def write_mesh(path: str | os.PathLike, vertices: Any, faces: Any) -> None:
+    """Writes V (#V×3) and F (#F×3, 0-based) as an OBJ at full precision."""
+    from ._core import write_mesh as _write
+
+    _write(path, np.asarray(vertices, dtype=np.float64), np.asarray(faces, dtype=np.int32))
+
+
+def _mesh_file(mesh: Any, folder: str, name: str) -> str:
+    """A path for `mesh`: itself when it is a path, else the (V, F) pair written into `folder`."""
+    if isinstance(mesh, (str, os.PathLike)):
+        return os.fspath(mesh)
+    if isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        path = os.path.join(folder, name + ".obj")
+        write_mesh(path, mesh[0], mesh[1])
+        return path
+    raise TypeError(f"{name}: expected a file path or a (V, F) pair of arrays, got {type(mesh).__name__}")
+
+
+def _option_arguments(options: dict[str, Any]) -> list[str]:
+    """Keyword options as long options: ``w_fit=10`` is ``--w-fit 10``; True is a bare
+    flag, False and None leave the option out; a list repeats the option."""
+    arguments: list[str] = []
+    for key, value in options.items():
+        name = "--" + key.replace("_", "-")
+        if value is None or value is False:
+            continue
+        if value is True:
+            arguments.append(name)
+        elif isinstance(value, (list, tuple)):
+            for item in value:
+                arguments += [name, os.fspath(item) if isinstance(item, os.PathLike) else str(item)]
+        else:
+            arguments += [name, os.fspath(value) if isinstance(value, os.PathLike) else str(value)]
+    return arguments
+
+
+def _read_json(path: str) -> dict | None:
+    try:
+        with open(path, encoding="utf-8") as file:
+            return json.load(file)
+    except FileNotFoundError:
+        return None
+
+
+def _read_mesh_if_present(path: str) -> tuple[np.ndarray, np.ndarray] | None:
+    return read_mesh(path) if os.path.exists(path) else None
+
+
+class _Folder:
+    """`out` when given (created if missing), else a temporary folder removed on exit."""
+
+    def __init__(self, out: str | os.PathLike | None):
+        self._temporary = tempfile.TemporaryDirectory(prefix="garment-retarget-") if out is None else None
+        self.path = self._temporary.name if self._temporary else os.fspath(out)
+
+    def __enter__(self) -> str:
+        return self.path
+
+    def __exit__(self, *exc: object) -> None:
+        if self._temporary:
+            self._temporary.cleanup()
+
+
+def _scene_command(command: str, garment: Any, avatar: Any, out: str | os.PathLike | None,
+                   options: dict[str, Any], outputs: Callable[[str, int], dict]) -> dict:
+    """Runs COMMAND --garment G --avatar A --out DIR with `options` (``quiet`` by default);
+    returns the exit code, what ``outputs(DIR, exit_code)`` reads and ``out``."""
+    options.setdefault("quiet", True)
+    with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
+        arguments = [command, "--garment", _mesh_file(garment, inputs, "garment"),
+                     "--avatar", _mesh_file(avatar, inputs, "avatar"), "--out", folder]
+        exit_code = run_command(arguments + _option_arguments(options))
+        return {"exit_code": exit_code, **outputs(folder, exit_code), "out": None if out is None else folder}
+
+
+def retarget(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **options: Any) -> dict:
+    """Refits `garment` onto `avatar` (``garment-retarget retarget``).
+
+    Options are the command's long options by name (``source_skeleton=``, ``skirt=True``,
+    ``quality="fast"``, ``w_fit=10``...); ``quiet`` defaults to True. Without `out` the
+    outputs go to a temporary folder that is removed once read.
+
+    Returns a dict: ``exit_code`` and ``status`` (certified, not_certified, no_valid_shrink,
+    solver_failure or shape_changed), ``report`` (report.json) and ``certificate``
+    (certificate.json) as dicts, ``garment`` as (V, F) arrays in the input OBJ's vertex
+    order (None when nothing was written), and ``out`` (None for a temporary folder).
+    """
+    def outputs(folder: str, exit_code: int) -> dict:
+        return {
+            "status": STATUS_BY_EXIT_CODE.get(exit_code, "failed"),
+            "report": _read_json(os.path.join(folder, "report.json")),
+            "certificate": _read_json(os.path.join(folder, "certificate.json")),
+            "garment": _read_mesh_if_present(os.path.join(folder, "garment.obj")),
+        }
+
+    return _scene_command("retarget", garment, avatar, out, options, outputs)
+
+
+def validate(garments: Any, avatar: Any, sources: Iterable[Any] | None = None, **options: Any) -> dict:
+    """Checks garments exactly against an avatar (``garment-retarget validate``).
+
+    `garments` is one mesh or a list of them (layers); `sources`, one per garment, adds the
+    shape check. Options: ``threshold=``, ``max_listed=`` and the shape-check options.
+    Returns ``exit_code``, ``certified`` and ``report`` (the validation report as a dict).
+    """
+    if isinstance(garments, (str, os.PathLike)) or (
+        isinstance(garments, tuple) and len(garments) == 2 and not isinstance(garments[0], (str, os.PathLike, tuple))
+    ):
+        garments = [garments]
+    with tempfile.TemporaryDirectory(prefix="garment-retarget-validate-") as folder:
+        arguments = ["validate", "--avatar", _mesh_file(avatar, folder, "avatar")]
+        for g, garment in enumerate(garments):
+            arguments += ["--garment", _mesh_file(garment, folder, f"garment{g}")]
+        for s, source in enumerate(sources or []):
+            arguments += ["--source", _mesh_file(source, folder, f"source{s}")]
+        report_path = os.path.join(folder, "report.json")
+        exit_code = run_command(arguments + ["--report", report_path] + _option_arguments(options))
+        report = _read_json(report_path)
+        return {"exit_code": exit_code, "certified": bool(report and report.get("certified")), "report": report}
+
+
+def shrink(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **options: Any) -> dict:
+    """Shrinks the avatar until it is certified free of the garment (``garment-retarget shrink``).
+
+    Options: ``mode=``, ``voxel_size=``, skeletons and skin weights as in `retarget`;
+    ``quiet`` defaults to True. Returns ``exit_code``, ``found``, ``report`` (report.json)
+    and ``avatar``: the shrunk avatar as (V, F) arrays, None when none was found.
+    """
+    def outputs(folder: str, exit_code: int) -> dict:
+        return {
+            "found": exit_code == 0,
+            "report": _read_json(os.path.join(folder, "report.json")),
+            "avatar": _read_mesh_if_present(os.path.join(folder, "shrunk_avatar.obj")),
+        }
+
+    return _scene_command("shrink", garment, avatar, out, options, outputs)
+
+
+def read_summary(out: str | os.PathLike) -> list[dict]:
+    """The rows of OUT/summary.csv as dicts (strings, as written)."""
+    with open(os.path.join(os.fspath(out), "summary.csv"), newline="", encoding="utf-8") as file:
+        return list(csv.DictReader(file))
+
+
+def batch(manifest: str | os.PathLike, out: str | os.PathLike, workers: int = 1, **options: Any) -> dict:
+    """Runs a JSON Lines manifest (``garment-retarget batch``), one process per job.
+
+    Options: ``threads_per_job=``, ``quiet=``. Jobs whose certified outputs exist for the
+    same inputs and options are reused. Returns ``exit_code`` (0 when every job ended
+    certified, 8 otherwise) and ``jobs``: the rows of OUT/summary.csv as dicts.
+    """
+    arguments = ["batch", os.fspath(manifest), "--out", os.fspath(out), "--workers", str(workers),
+                 "--program", program_path()]
+    exit_code = run_command(arguments + _option_arguments(options))
+    return {"exit_code": exit_code, "jobs": read_summary(out)}

@@ -1,0 +1,148 @@
+// The garment_retarget._core module: the command line's commands run in this process, the
+// OBJ reader and writer for NumPy arrays, and the batch's per-job runner for the cluster.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <nanobind/eigen/dense.h>
+#include <nanobind/nanobind.h>
+#include <nanobind/stl/filesystem.h>
+#include <nanobind/stl/pair.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
+
+#include "core/common/errors.hpp"
+#include "core/io/obj_document.hpp"
+#include "tools/batch/batch_run.hpp"
+#include "tools/cli/commands.hpp"
+
+namespace nb = nanobind;
+
+namespace {
+
+using RowMatrixX3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using RowMatrixX3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// Runs `garment-retarget ARGS...` in this process; returns its exit code. Errors raise as
+/// the command line's would end it: UsageError, InputError, OutputError.
+int run_command(const std::vector<std::string>& arguments) {
+  int exit_code = 0;
+  const std::unique_ptr<CLI::App> app = gr::make_command_line(exit_code);
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());
+  try {
+    const nb::gil_scoped_release unlocked;
+    app->parse(reversed);
+  } catch (const CLI::CallForHelp& e) {
+    return app->exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app->exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app->exit(e);
+  }
+  std::fflush(stdout);
+  return exit_code;
+}
+
+/// The OBJ's positions (#P×3, every `v` line) and triangles (#F×3, 0-based, polygons
+/// fan-triangulated).
+std::pair<RowMatrixX3d, RowMatrixX3i> read_mesh(const std::filesystem::path& path) {
+  const gr::ObjDocument document = gr::read_obj(path.string());
+  RowMatrixX3i faces(static_cast<Eigen::Index>(document.faces.size()), 3);
+  for (std::size_t f = 0; f < document.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      faces(static_cast<Eigen::Index>(f), c) = document.faces[f][c].position;
+  return {document.positions, faces};
+}
+
+/// Writes V (#V×3) and F (#F×3, 0-based) as an OBJ at full precision.
+void write_mesh(const std::filesystem::path& path, const RowMatrixX3d& vertices,
+                const RowMatrixX3i& faces) {
+  const auto bad = [&](const std::string& message) {
+    return gr::InputError(path.string(), 0, message);
+  };
+  if (vertices.rows() == 0) throw bad("the mesh has no vertex");
+  if (!vertices.allFinite()) throw bad("a vertex coordinate is not finite");
+  if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= vertices.rows()))
+    throw bad("a face index is out of range 0.." + std::to_string(vertices.rows() - 1));
+  gr::ObjDocument document;
+  document.source_path = path.string();
+  document.positions = vertices;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    document.faces.push_back(
+        {gr::ObjCorner{faces(f, 0)}, gr::ObjCorner{faces(f, 1)}, gr::ObjCorner{faces(f, 2)}});
+  gr::write_obj(path.string(), document, document.positions);
+}
+
+const gr::BatchJob& find_job(const std::vector<gr::BatchJob>& jobs, const std::string& manifest,
+                             const std::string& id) {
+  for (const gr::BatchJob& job : jobs)
+    if (job.id == id) return job;
+  throw gr::InputError(manifest, 0, "no job \"" + id + "\"");
+}
+
+/// The ids of a manifest's jobs, in order, once the manifest is read and checked.
+std::vector<std::string> manifest_ids(const std::string& manifest) {
+  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest);
+  gr::check_batch_options(manifest, jobs);
+  std::vector<std::string> ids;
+  for (const gr::BatchJob& job : jobs) ids.push_back(job.id);
+  return ids;
+}
+
+nb::dict outcome_dict(const gr::JobOutcome& outcome) {
+  nb::dict d;
+  d["id"] = outcome.id;
+  d["status"] = outcome.status;
+  d["exit_code"] = outcome.exit_code;
+  d["reused"] = outcome.reused;
+  d["seconds"] = outcome.seconds;
+  d["error"] = outcome.error;
+  return d;
+}
+
+/// One job of a manifest, exactly as `garment-retarget batch` runs it.
+nb::dict run_job(const std::string& manifest, const std::string& id, const std::string& out_dir,
+                 const std::string& program, int threads) {
+  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest);
+  const gr::BatchJob& job = find_job(jobs, manifest, id);
+  gr::JobOutcome outcome;
+  {
+    const nb::gil_scoped_release unlocked;
+    outcome = gr::run_batch_job(job, gr::JobRunner{program, out_dir, threads});
+  }
+  return outcome_dict(outcome);
+}
+
+void write_summary(const std::string& manifest, const std::string& out_dir,
+                   const std::vector<std::string>& reused_ids) {
+  gr::write_batch_summary(out_dir, gr::read_manifest(manifest), reused_ids);
+}
+
+}  // namespace
+
+NB_MODULE(_core, m) {
+  m.doc() = "garment-retarget's commands and batch runner";
+  nb::exception<gr::InputError>(m, "InputError", PyExc_ValueError);
+  nb::exception<gr::OutputError>(m, "OutputError", PyExc_OSError);
+  nb::exception<CLI::ParseError>(m, "UsageError", PyExc_ValueError);
+  m.attr("version") = GR_VERSION;
+  m.def("run_command", &run_command, nb::arg("arguments"),
+        "Runs `garment-retarget ARGUMENTS...` in this process and returns its exit code.");
+  m.def("read_mesh", &read_mesh, nb::arg("path"),
+        "Reads an OBJ: (V #V×3 float64, F #F×3 int32, 0-based).");
+  m.def("write_mesh", &write_mesh, nb::arg("path"), nb::arg("vertices"), nb::arg("faces"),
+        "Writes V (#V×3) and F (#F×3, 0-based) as an OBJ at full precision.");
+  m.def("manifest_ids", &manifest_ids, nb::arg("manifest"),
+        "Reads and checks a batch manifest; returns its job ids in order.");
+  m.def("run_job", &run_job, nb::arg("manifest"), nb::arg("id"), nb::arg("out_dir"),
+        nb::arg("program"), nb::arg("threads"),
+        "Runs (or reuses) one manifest job into OUT_DIR/<id> as the batch does; returns its "
+        "outcome.");
+  m.def("write_summary", &write_summary, nb::arg("manifest"), nb::arg("out_dir"),
+        nb::arg("reused_ids"), "Writes OUT_DIR/summary.csv from the job folders.");
+  m.def("remove_interrupted_jobs", &gr::remove_interrupted_jobs, nb::arg("out_dir"),
+        "Removes the temporary folders an interrupted batch left in OUT_DIR.");
+  m.def("threads_per_job", &gr::threads_per_job, nb::arg("workers"),
+        "Threads each of WORKERS jobs gets on this machine.");
+}

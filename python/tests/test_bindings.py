@@ -1,0 +1,73 @@
+import filecmp
+import os
+
+import numpy as np
+import pytest
+
+import garment_retarget as gr
+
+
+def test_retarget_returns_reports_and_arrays(scene, tmp_path, batch_out):
+    result = gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "run",
+                         no_fit=scene / "no-fit.txt", quality="fast", threads=1)
+    assert result["exit_code"] == 0
+    assert result["status"] == "certified"
+    assert result["certificate"]["certified"] is True
+    assert result["report"]["quality"] == "fast"
+    V, F = result["garment"]
+    V_in, F_in = gr.read_mesh(scene / "garment.obj")
+    assert V.shape == V_in.shape and V.dtype == np.float64
+    np.testing.assert_array_equal(F, F_in)
+    assert not np.array_equal(V, V_in)
+    # The in-process run writes the same bytes as the batch's separate process.
+    assert filecmp.cmp(tmp_path / "run" / "garment.obj", batch_out / "dress" / "garment.obj", shallow=False)
+
+
+def test_retarget_takes_arrays_and_cleans_its_temporary_folder(scene):
+    garment = gr.read_mesh(scene / "garment.obj")
+    avatar = gr.read_mesh(scene / "avatar.obj")
+    result = gr.retarget(garment, avatar, quality="fast", w_fit=0, shape_check="off")
+    assert result["out"] is None
+    assert result["status"] in ("certified", "shape_changed")
+    assert result["report"]["parameters"]["w_fit"] == 0
+    assert result["garment"][0].shape == garment[0].shape
+
+
+def test_errors_are_exceptions_with_the_command_line_messages(scene, tmp_path):
+    with pytest.raises(gr.InputError, match="missing.obj"):
+        gr.retarget(tmp_path / "missing.obj", scene / "avatar.obj")
+    with pytest.raises(gr.UsageError, match="fast, balanced|IsMember|quality"):
+        gr.retarget(scene / "garment.obj", scene / "avatar.obj", quality="fastest")
+    with pytest.raises(gr.UsageError, match="--no-such-option"):
+        gr.retarget(scene / "garment.obj", scene / "avatar.obj", no_such_option=1)
+    with pytest.raises(gr.InputError, match="out of range"):
+        gr.retarget((np.zeros((3, 3)), np.array([[0, 1, 5]])), scene / "avatar.obj")
+    with pytest.raises(TypeError):
+        gr.retarget(42, scene / "avatar.obj")
+    assert issubclass(gr.InputError, ValueError) and issubclass(gr.OutputError, OSError)
+
+
+def test_validate_reports_intersections(scene):
+    intersecting = gr.validate(scene / "garment.obj", scene / "avatar.obj")
+    assert intersecting["exit_code"] == 1
+    assert intersecting["certified"] is False
+    assert intersecting["report"]["counts"]["garment_avatar_intersections"] > 0
+
+
+def test_shrink_returns_the_shrunk_avatar(scene):
+    result = gr.shrink(scene / "garment.obj", scene / "avatar.obj", voxel_size=0.02)
+    assert result["found"] is True
+    V, F = result["avatar"]
+    assert V.shape[1] == 3 and F.shape[1] == 3 and len(F) > 0
+    assert gr.validate(scene / "garment.obj", result["avatar"])["certified"] is True
+
+
+def test_batch_records_each_job_and_reuses_certified_ones(manifest, batch_out):
+    jobs = {row["id"]: row for row in gr.read_summary(batch_out)}
+    assert jobs["dress"]["status"] == "certified" and jobs["dress"]["certificate"] == "certified"
+    assert jobs["broken"]["status"] == "bad_input" and "missing.obj" in jobs["broken"]["error"]
+    before = os.stat(batch_out / "dress" / "garment.obj").st_mtime_ns
+    again = gr.batch(manifest, batch_out, quiet=True)
+    rows = {row["id"]: row for row in again["jobs"]}
+    assert rows["dress"]["reused"] == "yes"
+    assert os.stat(batch_out / "dress" / "garment.obj").st_mtime_ns == before

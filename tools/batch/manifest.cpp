@@ -1,0 +1,145 @@
+#include "tools/batch/manifest.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/common/errors.hpp"
+#include "validate/report/file_digest.hpp"
+
+namespace gr {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool valid_id(const std::string& id) {
+  if (id.empty() || id.front() == '.') return false;
+  return std::all_of(id.begin(), id.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+  });
+}
+
+std::string option_name(std::string key) {
+  std::replace(key.begin(), key.end(), '_', '-');
+  return key;
+}
+
+/// An option value as the command line spells it; numbers keep JSON's shortest form.
+std::string argument_text(const nlohmann::json& value) {
+  return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+BatchJob parse_job(const std::string& manifest, std::size_t line_number, const std::string& text,
+                   const fs::path& folder) {
+  const auto fail = [&](const std::string& message) {
+    return InputError(manifest, line_number, message);
+  };
+  nlohmann::json line;
+  try {
+    line = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw fail(std::string("not a JSON object: ") + e.what());
+  }
+  if (!line.is_object()) throw fail("not a JSON object");
+  BatchJob job;
+  job.line = line_number;
+  const auto id = line.find("id");
+  if (id == line.end() || !id->is_string() || !valid_id(id->get<std::string>()))
+    throw fail(
+        "each job needs an \"id\": a string of letters, digits, '.', '_' and '-', not "
+        "starting with '.'");
+  job.id = id->get<std::string>();
+  const auto& inputs = batch_input_keys();
+  const auto& reserved = batch_reserved_options();
+  for (const auto& [raw_key, value] : line.items()) {
+    if (raw_key == "id") continue;
+    const std::string name = option_name(raw_key);
+    std::string key = name;
+    std::replace(key.begin(), key.end(), '-', '_');
+    if (std::find(inputs.begin(), inputs.end(), key) != inputs.end()) {
+      if (!value.is_string() || value.get<std::string>().empty())
+        throw fail(fmt::format("\"{}\" must be a file path", raw_key));
+      const fs::path path(value.get<std::string>());
+      job.inputs.emplace_back(key, (path.is_absolute() ? path : folder / path).string());
+    } else if (std::find(reserved.begin(), reserved.end(), name) != reserved.end()) {
+      throw fail(fmt::format("\"{}\" is set by the batch, not per job", raw_key));
+    } else if (value.is_boolean() && !value.get<bool>()) {
+      continue;  // a flag left out: the same job, and the same key, as without it
+    } else if (value.is_string() || value.is_number() || value.is_boolean()) {
+      if (job.options.contains(name)) throw fail(fmt::format("\"{}\" given twice", raw_key));
+      job.options[name] = value;
+    } else {
+      throw fail(fmt::format("\"{}\" must be a string, a number or a boolean", raw_key));
+    }
+  }
+  std::sort(job.inputs.begin(), job.inputs.end());
+  for (const char* required : {"avatar", "garment"}) {
+    const bool given = std::any_of(job.inputs.begin(), job.inputs.end(),
+                                   [&](const auto& input) { return input.first == required; });
+    if (!given) throw fail(fmt::format("job \"{}\" has no \"{}\"", job.id, required));
+  }
+  return job;
+}
+
+}  // namespace
+
+const std::vector<std::string>& batch_input_keys() {
+  static const std::vector<std::string> keys = {
+      "garment", "avatar", "source_skeleton", "target_skeleton", "skin_weights", "no_fit"};
+  return keys;
+}
+
+const std::vector<std::string>& batch_reserved_options() {
+  static const std::vector<std::string> names = {"out", "threads", "quiet"};
+  return names;
+}
+
+std::vector<BatchJob> read_manifest(const std::string& manifest_path) {
+  std::ifstream in(manifest_path);
+  if (!in) throw InputError(manifest_path, 0, "cannot open manifest");
+  const fs::path folder = fs::absolute(manifest_path).parent_path();
+  std::vector<BatchJob> jobs;
+  std::set<std::string> ids;
+  std::string text;
+  for (std::size_t line_number = 1; std::getline(in, text); ++line_number) {
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    BatchJob job = parse_job(manifest_path, line_number, text, folder);
+    if (!ids.insert(job.id).second)
+      throw InputError(manifest_path, line_number, fmt::format("duplicate id \"{}\"", job.id));
+    jobs.push_back(std::move(job));
+  }
+  if (in.bad()) throw InputError(manifest_path, 0, "read error");
+  if (jobs.empty()) throw InputError(manifest_path, 0, "no jobs in the manifest");
+  return jobs;
+}
+
+std::vector<std::string> retarget_arguments(const BatchJob& job) {
+  std::vector<std::string> arguments;
+  for (const auto& [key, path] : job.inputs) {
+    arguments.push_back("--" + option_name(key));
+    arguments.push_back(path);
+  }
+  for (const auto& [name, value] : job.options.items()) {
+    if (value.is_boolean()) {
+      if (value.get<bool>()) arguments.push_back("--" + name);
+      continue;
+    }
+    arguments.push_back("--" + name);
+    arguments.push_back(argument_text(value));
+  }
+  return arguments;
+}
+
+std::string job_key(const BatchJob& job) {
+  nlohmann::json inputs = nlohmann::json::object();
+  for (const auto& [key, path] : job.inputs) inputs[key] = sha256_of_file(path);
+  const nlohmann::json keyed = {
+      {"version", GR_VERSION}, {"inputs", inputs}, {"options", job.options}};
+  return sha256_of_text(keyed.dump());
+}
+
+}  // namespace gr
