@@ -202,34 +202,33 @@ std::vector<OutPrimitive> primitives_from_gltf(const ObjDocument& document,
   return out;
 }
 
-/// An OBJ document as one primitive: a vertex per distinct (position, texcoord, normal).
+/// An OBJ document as one primitive: a vertex per distinct (position, texcoord, normal),
+/// in the order of the OBJ's positions, so the welded vertices keep the OBJ's order.
 std::vector<OutPrimitive> primitives_from_obj(const ObjDocument& document) {
   std::vector<OutPrimitive> out(1);
   OutPrimitive& p = out[0];
   const bool has_uv = std::all_of(document.faces.begin(), document.faces.end(), [](const auto& f) {
     return f[0].texcoord >= 0 && f[1].texcoord >= 0 && f[2].texcoord >= 0;
   });
+  const auto key = [&](const ObjCorner& corner) {
+    return std::make_tuple(corner.position, has_uv ? corner.texcoord : -1, corner.normal);
+  };
   std::map<std::tuple<int, int, int>, std::uint32_t> vertex_of;
-  for (const auto& face : document.faces) {
-    std::array<std::uint32_t, 3> t{};
-    for (std::size_t c = 0; c < 3; ++c) {
-      const ObjCorner& corner = face[c];
-      const int uv = has_uv ? corner.texcoord : -1;
-      const auto [it, inserted] =
-          vertex_of.try_emplace(std::make_tuple(corner.position, uv, corner.normal),
-                                static_cast<std::uint32_t>(p.position.size()));
-      if (inserted) {
-        p.position.push_back(corner.position);
-        p.normal.push_back(corner.normal);
-        if (has_uv) {
-          const auto& tc = document.texcoords[static_cast<std::size_t>(uv)];
-          p.uv.push_back({tc[0], 1.0 - tc[1]});
-        }
-      }
-      t[c] = it->second;
+  for (const auto& face : document.faces)
+    for (const ObjCorner& corner : face) vertex_of.emplace(key(corner), 0);
+  for (auto& [corner, vertex] : vertex_of) {
+    const auto [position, uv, normal] = corner;
+    vertex = static_cast<std::uint32_t>(p.position.size());
+    p.position.push_back(position);
+    p.normal.push_back(normal);
+    if (has_uv) {
+      const auto& tc = document.texcoords[static_cast<std::size_t>(uv)];
+      p.uv.push_back({tc[0], 1.0 - tc[1]});
     }
-    p.triangles.push_back(t);
   }
+  for (const auto& face : document.faces)
+    p.triangles.push_back(
+        {vertex_of.at(key(face[0])), vertex_of.at(key(face[1])), vertex_of.at(key(face[2]))});
   return out;
 }
 
