@@ -2,6 +2,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -381,7 +382,9 @@ void write_glb(const std::string& path, const ObjDocument& document, const GltfD
   if (source) copy_materials(source->model->model, glb);
 
   tinygltf::Mesh mesh;
-  mesh.name = source ? source->mesh_name : std::string("garment");
+  mesh.name =
+      source ? source->mesh_name : std::filesystem::path(document.source_path).stem().string();
+  if (mesh.name.empty()) mesh.name = "mesh";
   for (std::size_t i = 0; i < primitives.size(); ++i) {
     const OutPrimitive& p = primitives[i];
     tinygltf::Primitive out;

@@ -84,9 +84,10 @@ double mean_abs_change(const std::vector<double>& a, const std::vector<double>& 
   return sum / static_cast<double>(a.size());
 }
 
-TEST_CASE("goblin_puffer from two GLB files: certified, skinned to the goblin, valid glTF, "
-          "and posed with the body",
-          "[gltf][pipeline]") {
+TEST_CASE(
+    "goblin_puffer from two GLB files: certified, skinned to the goblin, valid glTF, "
+    "and posed with the body",
+    "[gltf][pipeline]") {
   const auto dir = test::fresh_temp_dir("gltf_goblin_puffer");
   const std::string garment = (dir / "puffer.glb").string();
   const std::string avatar = (dir / "goblin.glb").string();
@@ -115,7 +116,8 @@ TEST_CASE("goblin_puffer from two GLB files: certified, skinned to the goblin, v
   REQUIRE(validator.summary["errors"] == 0);
 
   const nlohmann::json report = nlohmann::json::parse(test::read_text(out / "report.json"));
-  const nlohmann::json certificate = nlohmann::json::parse(test::read_text(out / "certificate.json"));
+  const nlohmann::json certificate =
+      nlohmann::json::parse(test::read_text(out / "certificate.json"));
   REQUIRE(report["certified"] == true);
   const nlohmann::json& skin_report = report["skin"];
   REQUIRE(skin_report["written"] == true);
@@ -144,8 +146,9 @@ TEST_CASE("goblin_puffer from two GLB files: certified, skinned to the goblin, v
   const SkinBinding& body_skin = *body.gltf.skin;
   const int shoulder = joint_named(body_skin, "joint_3");
   const int elbow = joint_named(body_skin, "joint_4");
-  const Vector3d upper_arm = body_skin.joints[static_cast<std::size_t>(elbow)].world.topRightCorner<3, 1>() -
-                             body_skin.joints[static_cast<std::size_t>(shoulder)].world.topRightCorner<3, 1>();
+  const Vector3d upper_arm =
+      body_skin.joints[static_cast<std::size_t>(elbow)].world.topRightCorner<3, 1>() -
+      body_skin.joints[static_cast<std::size_t>(shoulder)].world.topRightCorner<3, 1>();
   struct Pose {
     const char* name;
     int joint;
@@ -166,10 +169,10 @@ TEST_CASE("goblin_puffer from two GLB files: certified, skinned to the goblin, v
 
   for (const Pose& p : poses) {
     CAPTURE(p.name);
-    const TriangleMesh posed_body =
-        with_positions(body.document, pose(body.document.positions, body_skin, p.joint, p.rotation));
-    const TriangleMesh posed_garment = with_positions(
-        result.document, pose(result.document.positions, skin, p.joint, p.rotation));
+    const TriangleMesh posed_body = with_positions(
+        body.document, pose(body.document.positions, body_skin, p.joint, p.rotation));
+    const TriangleMesh posed_garment =
+        with_positions(result.document, pose(result.document.positions, skin, p.joint, p.rotation));
     // The pose moves the arm: a garment left in place falls away from it (or into it).
     REQUIRE((posed_body.vertices - rest_body.vertices).rowwise().norm().maxCoeff() >
             0.2 * upper_arm.norm());
