@@ -220,5 +220,46 @@ TEST_CASE("Bad glTF input gives one clear InputError", "[io][gltf]") {
   }
 }
 
+TEST_CASE("Node transforms are applied; primitives are merged and written back apart",
+          "[io][gltf]") {
+  const auto dir = test::fresh_temp_dir("gltf_nodes");
+  nlohmann::json json = valid_gltf_json(dir);
+  const GltfAsset plain = read_gltf(write_json(json, dir / "plain.gltf"));
+
+  // A parent scaling by 2 and a child moving by (1, 2, 3) and turning 90 degrees about z.
+  json["nodes"][0]["translation"] = {1.0, 2.0, 3.0};
+  json["nodes"][0]["rotation"] = {0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)};
+  json["nodes"].push_back({{"name", "root"}, {"scale", {2.0, 2.0, 2.0}}, {"children", {0}}});
+  json["scenes"][0]["nodes"] = {1};
+  // A second primitive on the same vertices with a material of its own.
+  json["materials"] = {{{"name", "front"}}, {{"name", "back"}}};
+  json["meshes"][0]["primitives"][0]["material"] = 0;
+  json["meshes"][0]["primitives"].push_back(json["meshes"][0]["primitives"][0]);
+  json["meshes"][0]["primitives"][1]["material"] = 1;
+  const GltfAsset placed = read_gltf(write_json(json, dir / "placed.gltf"));
+
+  REQUIRE(placed.gltf.primitives.size() == 2);
+  REQUIRE(placed.document.positions.rows() == 2 * plain.document.positions.rows());
+  REQUIRE(placed.document.faces.size() == 2 * plain.document.faces.size());
+  for (Eigen::Index v = 0; v < placed.document.positions.rows(); ++v) {
+    const Vector3d p = plain.document.positions.row(v % plain.document.positions.rows()).transpose();
+    const Vector3d expected = 2.0 * (Vector3d(-p.y(), p.x(), p.z()) + Vector3d(1.0, 2.0, 3.0));
+    CAPTURE(v);
+    REQUIRE((placed.document.positions.row(v).transpose() - expected).norm() < 1e-12);
+  }
+  // Normals turn with the node: the quad faced +z and still does.
+  REQUIRE(placed.document.normals(0, 2) == Approx(1.0));
+
+  const std::string written = (dir / "written.glb").string();
+  write_glb(written, placed.document, &placed.gltf, placed.document.positions, nullptr);
+  const tinygltf::Model model = test::load_glb(written);
+  REQUIRE(model.meshes[0].primitives.size() == 2);
+  REQUIRE(model.meshes[0].primitives[0].material == 0);
+  REQUIRE(model.meshes[0].primitives[1].material == 1);
+  REQUIRE(model.materials[1].name == "back");
+  const GltfAsset again = read_gltf(written);
+  REQUIRE((again.document.positions - placed.document.positions).cwiseAbs().maxCoeff() < 1e-5);
+}
+
 }  // namespace
 }  // namespace gr
