@@ -437,6 +437,11 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
   }
   if (document.faces.empty())
     throw InputError(path, 0, fmt::format("mesh '{}' has no triangle", gltf.mesh_name));
+  for (const tinygltf::Image& image : model.images)
+    if (image.image.empty() && image.bufferView < 0)
+      document.warnings.push_back(
+          fmt::format("{}: image '{}' could not be read; a written file refers to it by name", path,
+                      image.uri));
   if (!skipped.empty())
     document.warnings.push_back(fmt::format("{}: mesh '{}': {} point or line primitives skipped",
                                             path, gltf.mesh_name, skipped.size()));

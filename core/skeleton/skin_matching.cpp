@@ -1,7 +1,9 @@
 #include "core/skeleton/skin_matching.hpp"
 
+#include <algorithm>
 #include <array>
 #include <deque>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -99,6 +101,28 @@ MatchedSkeletons match_skin_skeletons(const SkinBinding& source, const SkinBindi
     matched.kept_joint_of_target.push_back(to);
   }
   return matched;
+}
+
+Eigen::MatrixXd nearest_bone_weights(const Skeleton& skeleton,
+                                     const Eigen::Ref<const MatrixX3d>& points) {
+  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(skeleton.joints.rows(), points.rows());
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    const Vector3d p = points.row(v).transpose();
+    double best = std::numeric_limits<double>::infinity();
+    for (Eigen::Index b = 0; b < skeleton.bones.rows(); ++b) {
+      const Vector3d a = skeleton.joints.row(skeleton.bones(b, 0)).transpose();
+      const Vector3d d = skeleton.joints.row(skeleton.bones(b, 1)).transpose() - a;
+      const double s =
+          d.squaredNorm() > 0.0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double distance_sq = (a + s * d - p).squaredNorm();
+      if (distance_sq >= best) continue;
+      best = distance_sq;
+      weights.col(v).setZero();
+      weights(skeleton.bones(b, 0), v) += 1.0 - s;
+      weights(skeleton.bones(b, 1), v) += s;
+    }
+  }
+  return weights;
 }
 
 SkinBinding skin_of_skeleton(const Skeleton& skeleton, const Eigen::MatrixXd& weights) {

@@ -41,4 +41,13 @@ MatchedSkeletons match_skin_skeletons(const SkinBinding& source, const SkinBindi
 /// @pre weights is empty or has skeleton.joints.rows() rows.
 SkinBinding skin_of_skeleton(const Skeleton& skeleton, const Eigen::MatrixXd& weights);
 
+/// The default binding of points to a skeleton: each point to its nearest bone (segment),
+/// shared between the bone's two joints by where its closest point lies along the bone
+/// (1 - s and s). A zero-length bone counts as its first joint.
+/// @param points #P×3, in the skeleton's frame.
+/// @return #J×#P weights, each column summing to 1.
+/// @pre the skeleton has at least one bone.
+Eigen::MatrixXd nearest_bone_weights(const Skeleton& skeleton,
+                                     const Eigen::Ref<const MatrixX3d>& points);
+
 }  // namespace gr

@@ -336,10 +336,9 @@ FitResult fit_stage(Run& run, SolverScene& solver, const MatrixX3d& inflated) {
 
 /// The avatar's skin carried to the garment's document positions (#J×#P), by transfer
 /// onto the written garment (welded, avatar units); unreferenced positions follow joint 0.
-Eigen::MatrixXd garment_skin_weights(Run& run, const Inputs& in,
+Eigen::MatrixXd garment_skin_weights(Run& run, const Inputs& in, const SkinBinding& skin,
                                      const MatrixX3d& garment_avatar_units) {
   const Scene& scene = in.scene;
-  const SkinBinding& skin = *scene.avatar_skin;
   Eigen::MatrixXd body_weights(scene.avatar.sim_to_obj.size(), skin.weights.rows());
   for (std::size_t s = 0; s < scene.avatar.sim_to_obj.size(); ++s)
     body_weights.row(static_cast<Eigen::Index>(s)) =
@@ -371,7 +370,7 @@ Eigen::MatrixXd garment_skin_weights(Run& run, const Inputs& in,
 }
 
 /// Writes the garment (normalized #Vg×3) as a GLB in the avatar's frame and units, skinned
-/// over the avatar's skeleton when the avatar has a skin.
+/// over the avatar's skeleton when the avatar has one.
 void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const MatrixX3d>& garment) {
   const Normalization& n = in.normalized.normalization;
   const MatrixX3d welded = n.avatar_to_scene.invert_rows(garment);
@@ -379,15 +378,22 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
       in.scene.garment_document, in.scene.garment, welded,
       [&](const Vector3d& p) { return n.avatar_to_scene.invert(n.garment_to_scene.apply(p)); });
   const GltfDocument* source = in.scene.garment_gltf ? &*in.scene.garment_gltf : nullptr;
-  if (!in.scene.avatar_skin) {
+  if (!source && !in.scene.garment_document.material_libraries.empty())
+    run.warn("the OBJ garment's materials are not carried into the GLB (UVs are)");
+  const std::optional<SkinBinding> avatar_skin = avatar_skin_for_export(in.scene);
+  if (!avatar_skin) {
     run.warn(
-        "the avatar has no skin (glTF skin, or skeleton with --skin-weights): the GLB is "
-        "written without one");
+        "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
+        "without a skin");
     write_glb(run.result.garment_path, in.scene.garment_document, source, positions, nullptr);
     return;
   }
-  SkinBinding skin = *in.scene.avatar_skin;
-  skin.weights = garment_skin_weights(run, in, welded);
+  if (!in.scene.avatar_skin)
+    run.warn(
+        "the avatar has no skin weights: the GLB's skin takes the avatar's vertices bound "
+        "to their nearest bones");
+  SkinBinding skin = *avatar_skin;
+  skin.weights = garment_skin_weights(run, in, *avatar_skin, welded);
   write_glb(run.result.garment_path, in.scene.garment_document, source, positions, &skin);
 }
 

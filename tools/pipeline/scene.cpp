@@ -128,4 +128,19 @@ Scene load_scene(const ScenePaths& paths) {
   return scene;
 }
 
+std::optional<SkinBinding> avatar_skin_for_export(const Scene& scene) {
+  if (scene.avatar_skin) return scene.avatar_skin;
+  const MatrixX3d& positions = scene.avatar_document.positions;
+  if (scene.avatar_gltf && scene.avatar_gltf->skin) {
+    SkinBinding skin = *scene.avatar_gltf->skin;
+    skin.weights =
+        nearest_bone_weights(skeleton_of_skin(skin, scene.avatar_document.source_path), positions);
+    return skin;
+  }
+  if (scene.target_skeleton)
+    return skin_of_skeleton(*scene.target_skeleton,
+                            nearest_bone_weights(*scene.target_skeleton, positions));
+  return std::nullopt;
+}
+
 }  // namespace gr

@@ -52,4 +52,10 @@ struct Scene {
 ///        not match, a joint map without two skins).
 Scene load_scene(const ScenePaths& paths);
 
+/// The avatar's skin for a written GLB: `scene.avatar_skin`, else its skeleton (a glTF
+/// skin without weights, or the target skeleton) with every vertex bound to its nearest
+/// bone (nearest_bone_weights); unset when the avatar has no skeleton.
+/// @throw InputError when a glTF skin without weights has no bone.
+std::optional<SkinBinding> avatar_skin_for_export(const Scene& scene);
+
 }  // namespace gr

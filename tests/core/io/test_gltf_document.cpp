@@ -242,7 +242,8 @@ TEST_CASE("Node transforms are applied; primitives are merged and written back a
   REQUIRE(placed.document.positions.rows() == 2 * plain.document.positions.rows());
   REQUIRE(placed.document.faces.size() == 2 * plain.document.faces.size());
   for (Eigen::Index v = 0; v < placed.document.positions.rows(); ++v) {
-    const Vector3d p = plain.document.positions.row(v % plain.document.positions.rows()).transpose();
+    const Vector3d p =
+        plain.document.positions.row(v % plain.document.positions.rows()).transpose();
     const Vector3d expected = 2.0 * (Vector3d(-p.y(), p.x(), p.z()) + Vector3d(1.0, 2.0, 3.0));
     CAPTURE(v);
     REQUIRE((placed.document.positions.row(v).transpose() - expected).norm() < 1e-12);

@@ -28,8 +28,7 @@ TEST_CASE("Skins match by name, through a joint map, and say which joints are mi
           "[skeleton][skin]") {
   const SkinBinding source = chain({"hips", "spine", "neck", "head"}, {-1, 0, 1, 2});
   // The target names its joints otherwise, in another order, with one joint more.
-  const SkinBinding target =
-      chain({"Hips", "Spine", "Spine1", "Neck", "Head"}, {-1, 0, 1, 2, 3});
+  const SkinBinding target = chain({"Hips", "Spine", "Spine1", "Neck", "Head"}, {-1, 0, 1, 2, 3});
 
   SECTION("missing joints are listed") {
     REQUIRE_THROWS_WITH(match_skin_skeletons(source, target, {}, "avatar.glb"),

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
-#include "core/io/gltf_fixture.hpp"
 #include "core/io/gltf_document.hpp"
+#include "core/io/gltf_fixture.hpp"
 #include "gltf_scene.hpp"
 #include "test_support.hpp"
 #include "validate/certify/validation.hpp"
