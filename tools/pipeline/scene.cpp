@@ -21,7 +21,7 @@ SimulationMesh load_surface(const std::string& path, const std::string& mesh_nam
     gltf = std::move(asset.gltf);
   } else {
     if (!mesh_name.empty())
-      throw InputError(path, 0, fmt::format("a {} mesh name is for glTF files only", role));
+      throw InputError(path, 0, fmt::format("--{}-mesh is for glTF files only", role));
     document = read_obj(path);
   }
   warnings.insert(warnings.end(), document.warnings.begin(), document.warnings.end());

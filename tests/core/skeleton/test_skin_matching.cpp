@@ -54,6 +54,23 @@ TEST_CASE("Skins match by name, through a joint map, and say which joints are mi
   }
 }
 
+TEST_CASE("The nearest-bone binding shares a point between its bone's joints", "[skeleton][skin]") {
+  Skeleton skeleton;
+  skeleton.joints.resize(3, 3);
+  skeleton.joints << 0, 0, 0, 0, 0, 1, 1, 0, 1;  // up the z axis, then along x
+  skeleton.bones.resize(2, 2);
+  skeleton.bones << 0, 1, 1, 2;
+  MatrixX3d points(3, 3);
+  points << 0.1, 0, 0.25,  // beside the first bone, a quarter up
+      0.75, 0.1, 1.2,      // above the second, three quarters along
+      -1, 0, -1;           // below the first joint: clamped to it
+  const Eigen::MatrixXd w = nearest_bone_weights(skeleton, points);
+  REQUIRE(w.rows() == 3);
+  REQUIRE(w.col(0).isApprox(Eigen::Vector3d(0.75, 0.25, 0.0)));
+  REQUIRE(w.col(1).isApprox(Eigen::Vector3d(0.0, 0.25, 0.75)));
+  REQUIRE(w.col(2).isApprox(Eigen::Vector3d(1.0, 0.0, 0.0)));
+}
+
 TEST_CASE("Joint map files", "[skeleton][skin]") {
   const auto dir = test::fresh_temp_dir("joint_map");
   const std::string path = (dir / "map.txt").string();
