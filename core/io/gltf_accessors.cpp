@@ -48,8 +48,10 @@ Span checked_span(const tinygltf::Model& model, int index, const std::string& pa
   Span span;
   span.element = static_cast<std::size_t>(components * size);
   span.stride = view.byteStride == 0 ? span.element : view.byteStride;
-  const std::size_t needed =
-      a.count == 0 ? 0 : a.byteOffset + (a.count - 1) * span.stride + span.element;
+  // Every element takes at least a byte: a larger count cannot fit (and would overflow).
+  const std::size_t needed = a.count == 0 || a.count > view.byteLength
+                                 ? (a.count == 0 ? 0 : view.byteLength + 1)
+                                 : a.byteOffset + (a.count - 1) * span.stride + span.element;
   if (span.stride < span.element || needed > view.byteLength ||
       view.byteOffset + view.byteLength > buffer.data.size())
     throw InputError(path, 0,

@@ -162,6 +162,12 @@ NodeGraph node_graph(const tinygltf::Model& model, const std::string& path) {
                          fmt::format("node {} has an invalid or shared child {}", i, child));
       graph.parent[static_cast<std::size_t>(child)] = static_cast<int>(i);
     }
+  // A cycle of parents would leave some nodes without a root and hang the walks up.
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t steps = 0;
+    for (int p = graph.parent[i]; p >= 0; p = graph.parent[static_cast<std::size_t>(p)])
+      if (++steps > n) throw InputError(path, 0, fmt::format("node {} is its own ancestor", i));
+  }
   std::vector<int> roots;
   if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size())
     roots = model.scenes[static_cast<std::size_t>(model.defaultScene)].nodes;

@@ -197,6 +197,18 @@ TEST_CASE("Bad glTF input gives one clear InputError", "[io][gltf]") {
     }
     require_error(broken, "index.gltf", "out of range");
   }
+  SECTION("accessor count beyond any buffer") {
+    const int position = broken["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    broken["accessors"][position]["count"] = 4611686018427387904ULL;
+    require_error(broken, "huge.gltf", "reaches past");
+  }
+  SECTION("node cycle") {
+    broken["nodes"][0]["children"] = {1};
+    broken["nodes"].push_back({{"children", {0}}});
+    broken.erase("scene");
+    broken.erase("scenes");
+    require_error(broken, "cycle.gltf", "own ancestor");
+  }
   SECTION("sparse accessor") {
     const int position = broken["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
     broken["accessors"][position]["sparse"] = {
