@@ -1,4 +1,6 @@
 #include <fstream>
+#include <iterator>
+#include <random>
 #include <sstream>
 
 #include <catch2/catch.hpp>
@@ -272,6 +274,47 @@ TEST_CASE("Node transforms are applied; primitives are merged and written back a
   REQUIRE(model.materials[1].name == "back");
   const GltfAsset again = read_gltf(written);
   REQUIRE((again.document.positions - placed.document.positions).cwiseAbs().maxCoeff() < 1e-5);
+}
+
+TEST_CASE("Corrupted GLB bytes give an InputError or a mesh, never a crash", "[io][gltf]") {
+  const auto dir = test::fresh_temp_dir("gltf_corrupt");
+  ObjDocument quad;
+  quad.positions.resize(4, 3);
+  quad.positions << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  quad.faces = {{ObjCorner{0, -1, -1}, ObjCorner{1, -1, -1}, ObjCorner{2, -1, -1}},
+                {ObjCorner{0, -1, -1}, ObjCorner{2, -1, -1}, ObjCorner{3, -1, -1}}};
+  const std::string valid = (dir / "quad.glb").string();
+  // Skinned, so the skin's accessors and nodes are corrupted too.
+  Skeleton bone;
+  bone.joints.resize(2, 3);
+  bone.joints << 0, 0, 0, 0, 1, 0;
+  bone.bones.resize(1, 2);
+  bone.bones << 0, 1;
+  const SkinBinding skin = skin_of_skeleton(bone, Eigen::MatrixXd::Constant(2, 4, 0.5));
+  write_glb(valid, quad, nullptr, quad.positions, &skin);
+  std::ifstream in(valid, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::mt19937 random(17);
+  int parsed = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    std::string corrupt = bytes;
+    const int flips = 1 + trial % 4;
+    for (int k = 0; k < flips; ++k)
+      corrupt[random() % corrupt.size()] = static_cast<char>(random() % 256);
+    if (trial % 10 == 0) corrupt.resize(random() % corrupt.size());
+    const std::string path = (dir / "corrupt.glb").string();
+    std::ofstream(path, std::ios::binary) << corrupt;
+    CAPTURE(trial);
+    try {
+      const GltfAsset asset = read_gltf(path);
+      for (const auto& face : asset.document.faces)
+        for (const ObjCorner& corner : face)
+          REQUIRE((corner.position >= 0 && corner.position < asset.document.positions.rows()));
+      ++parsed;
+    } catch (const InputError&) {
+    }
+  }
+  WARN(parsed << " of 400 corrupted files still parsed");
 }
 
 }  // namespace
