@@ -129,13 +129,19 @@ TEST_CASE("A skin written over a skeleton reads back: joints, parents and the 4 
     }
 }
 
-/// A valid small glTF (JSON, buffer embedded) to break in one place per case.
-nlohmann::json valid_gltf_json(const std::filesystem::path& dir) {
+/// The unit square in z = 0 as two triangles.
+ObjDocument unit_quad() {
   ObjDocument quad;
   quad.positions.resize(4, 3);
   quad.positions << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
   quad.faces = {{ObjCorner{0, -1, -1}, ObjCorner{1, -1, -1}, ObjCorner{2, -1, -1}},
                 {ObjCorner{0, -1, -1}, ObjCorner{2, -1, -1}, ObjCorner{3, -1, -1}}};
+  return quad;
+}
+
+/// A valid small glTF (JSON, buffer embedded) to break in one place per case.
+nlohmann::json valid_gltf_json(const std::filesystem::path& dir) {
+  const ObjDocument quad = unit_quad();
   const std::string glb = (dir / "quad.glb").string();
   write_glb(glb, quad, nullptr, quad.positions, nullptr);
   tinygltf::Model model = test::load_glb(glb);
@@ -278,11 +284,7 @@ TEST_CASE("Node transforms are applied; primitives are merged and written back a
 
 TEST_CASE("Corrupted GLB bytes give an InputError or a mesh, never a crash", "[io][gltf]") {
   const auto dir = test::fresh_temp_dir("gltf_corrupt");
-  ObjDocument quad;
-  quad.positions.resize(4, 3);
-  quad.positions << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
-  quad.faces = {{ObjCorner{0, -1, -1}, ObjCorner{1, -1, -1}, ObjCorner{2, -1, -1}},
-                {ObjCorner{0, -1, -1}, ObjCorner{2, -1, -1}, ObjCorner{3, -1, -1}}};
+  const ObjDocument quad = unit_quad();
   const std::string valid = (dir / "quad.glb").string();
   // Skinned, so the skin's accessors and nodes are corrupted too.
   Skeleton bone;
