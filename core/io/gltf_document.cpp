@@ -390,10 +390,17 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       }
       const Vector3d local(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
       positions.push_back((to_world * local.homogeneous()).head<3>());
+      if (!positions.back().allFinite())
+        throw InputError(path, 0,
+                         fmt::format("mesh '{}': vertex {} is not finite once its node "
+                                     "and joint transforms are applied",
+                                     gltf.mesh_name, positions.size() - 1));
       if (!normal.empty()) {
         const Eigen::Matrix3d linear = to_world.topLeftCorner<3, 3>().inverse().transpose();
-        normals.push_back(
-            (linear * Vector3d(normal[3 * v], normal[3 * v + 1], normal[3 * v + 2])).normalized());
+        const Vector3d given(normal[3 * v], normal[3 * v + 1], normal[3 * v + 2]);
+        const Vector3d turned = linear * given;
+        // A singular transform (zero scale) has no normal map: the given normal is kept.
+        normals.push_back(turned.allFinite() && turned.norm() > 0.0 ? turned.normalized() : given);
       }
       if (!uv.empty()) document.texcoords.push_back({uv[2 * v], 1.0 - uv[2 * v + 1], 0.0});
     }
