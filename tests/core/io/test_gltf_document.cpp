@@ -160,6 +160,17 @@ TEST_CASE("Bad glTF input gives one clear InputError", "[io][gltf]") {
   const auto dir = test::fresh_temp_dir("gltf_bad");
   const nlohmann::json valid = valid_gltf_json(dir);
   REQUIRE(read_gltf(write_json(valid, dir / "valid.gltf")).document.faces.size() == 2);
+  {
+    // The same buffer as a file beside the .gltf reads the same.
+    const tinygltf::Model model = test::load_glb((dir / "quad.glb").string());
+    std::ofstream(dir / "quad.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(model.buffers[0].data.data()),
+               static_cast<std::streamsize>(model.buffers[0].data.size()));
+    nlohmann::json external = valid;
+    external["buffers"][0]["uri"] = "quad.bin";
+    REQUIRE(read_gltf(write_json(external, dir / "external.gltf")).document.positions ==
+            read_gltf(write_json(valid, dir / "valid.gltf")).document.positions);
+  }
 
   const auto require_error = [&](const nlohmann::json& json, const std::string& name,
                                  const std::string& message) {
@@ -317,6 +328,45 @@ TEST_CASE("Corrupted GLB bytes give an InputError or a mesh, never a crash", "[i
     }
   }
   WARN(parsed << " of 400 corrupted files still parsed");
+}
+
+TEST_CASE("A skinned mesh sits where its joints put it", "[io][gltf]") {
+  const auto dir = test::fresh_temp_dir("gltf_skinned_rest");
+  Skeleton bone;
+  bone.joints.resize(2, 3);
+  bone.joints << 0, 0, 0, 0, 1, 0;
+  bone.bones.resize(1, 2);
+  bone.bones << 0, 1;
+  const ObjDocument quad = unit_quad();
+  Eigen::MatrixXd weights(2, 4);
+  weights << 1, 1, 0.5, 0, 0, 0, 0.5, 1;  // two corners on each joint, one shared
+  const SkinBinding skin = skin_of_skeleton(bone, weights);
+  const std::string glb = (dir / "skinned.glb").string();
+  write_glb(glb, quad, nullptr, quad.positions, &skin);
+  const GltfAsset rest = read_gltf(glb);
+  REQUIRE((rest.document.positions - quad.positions).cwiseAbs().maxCoeff() < 1e-6);
+
+  // Move the root joint by (5, 0, 0) and turn the child joint 90 degrees about z, leaving
+  // the inverse bind matrices as they were: the mesh follows by linear blend skinning.
+  tinygltf::Model model = test::load_glb(glb);
+  const int root = model.skins[0].joints[0];
+  const int child = model.skins[0].joints[1];
+  model.nodes[static_cast<std::size_t>(root)].translation = {5.0, 0.0, 0.0};
+  model.nodes[static_cast<std::size_t>(child)].rotation = {0.0, 0.0, std::sqrt(0.5),
+                                                           std::sqrt(0.5)};
+  const std::string posed_path = (dir / "posed.glb").string();
+  test::save_model(model, posed_path, true);
+  const GltfAsset posed = read_gltf(posed_path);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2.0, Vector3d::UnitZ()).toRotationMatrix();
+  const Vector3d child_joint(5.0, 1.0, 0.0);
+  for (Eigen::Index v = 0; v < 4; ++v) {
+    const Vector3d p = quad.positions.row(v).transpose();
+    const Vector3d on_root = p + Vector3d(5.0, 0.0, 0.0);
+    const Vector3d on_child = child_joint + turn * (p - Vector3d(0.0, 1.0, 0.0));
+    const Vector3d expected = weights(0, v) * on_root + weights(1, v) * on_child;
+    CAPTURE(v);
+    REQUIRE((posed.document.positions.row(v).transpose() - expected).norm() < 1e-5);
+  }
 }
 
 }  // namespace
