@@ -116,6 +116,12 @@ TEST_CASE(
   REQUIRE(validator.exit_code == 0);
   REQUIRE(validator.summary["errors"] == 0);
 
+  // `validate` reads the GLB garment and avatar as `retarget` certified them.
+  const test::CliRun check =
+      test::run_cli({"validate", "--garment", written, "--avatar", avatar}, "gltf_validate");
+  INFO(check.out << check.err);
+  REQUIRE(check.exit_code == 0);
+
   const nlohmann::json report = nlohmann::json::parse(test::read_text(out / "report.json"));
   const nlohmann::json certificate =
       nlohmann::json::parse(test::read_text(out / "certificate.json"));
