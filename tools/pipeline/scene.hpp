@@ -19,9 +19,10 @@ struct ScenePaths {
   std::string target_skeleton;
   std::string skin_weights;  ///< #joints × #avatar OBJ vertices; needs skeletons
   std::string no_fit;        ///< 0-based garment OBJ vertex ids
-  std::string garment_mesh;  ///< glTF garment: the mesh (or node) to read; empty: the default
-  std::string avatar_mesh;   ///< glTF avatar: the same
-  std::string joint_map;     ///< glTF skins: source joint name -> target joint name
+  // Initialized so brace lists that stop at no_fit stay warning-free.
+  std::string garment_mesh{};  ///< glTF garment: the mesh (or node) to read; empty: the default
+  std::string avatar_mesh{};   ///< glTF avatar: the same
+  std::string joint_map{};     ///< glTF skins: source joint name -> target joint name
 };
 
 /// A scene as read and checked, in the files' own units and frames.
