@@ -11,7 +11,7 @@ packages=(
   build-essential cmake ninja-build python3 python3-venv python3-dev clang clang-format libclang-rt-14-dev
   libeigen3-dev libsuitesparse-dev libatlas3-base libopenblas0-pthread libsleef-dev
   libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
-  catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
+  catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev libtinygltf-dev
   libpng-dev chromium
 )
 # Node.js and npm bundle the report page's three.js at build time and drive the browser

@@ -32,6 +32,21 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   add_scene_options(*cmd, options->inputs, options->out_dir);
   cmd->add_option("--no-fit", options->inputs.no_fit,
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting");
+  cmd->add_option("--format", options->format,
+                  "Written garment format (default: the garment's input format, glb for .glb "
+                  "and .gltf)")
+      ->check(CLI::IsMember({"obj", "glb"}));
+  cmd->add_option("--skin-max-distance", options->skin_transfer.max_distance,
+                  "GLB skin: a garment vertex takes the avatar's weights directly within this "
+                  "distance of the avatar (fraction of its bounding-box diagonal); the others "
+                  "are inpainted")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--skin-max-angle", options->skin_transfer.max_angle_degrees,
+                  "GLB skin: ... and where its normal is within this angle of the avatar's "
+                  "(degrees)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
   cmd->add_flag("--skirt", options->skirt,
                 "Garment is a skirt: add a virtual bone between the legs");
   cmd->add_option("--shrink", *shrink_mode,

@@ -26,6 +26,7 @@ struct ValidateCommandOptions {
   std::string marks;
   std::string html;
   std::optional<double> threshold;
+  std::string avatar_mesh;
   std::size_t max_listed = kDefaultListedIssues;
   std::vector<std::string> sources;  ///< per garment, its source garment (empty: no shape check)
   ShapeThresholds shape_thresholds;
@@ -61,10 +62,15 @@ void add_validate_command(CLI::App& root, int& exit_code) {
   CLI::App* cmd = root.add_subcommand(
       "validate", "Check existing garments exactly against an avatar, themselves and each other.");
   cmd->add_option("--garment", options->garments,
-                  "Garment OBJ; repeat for layers (each pair of garments is checked too)")
+                  "Garment OBJ or glTF; repeat for layers (each pair of garments is checked too)")
       ->required()
       ->take_all();
-  cmd->add_option("--avatar", options->avatar, "Avatar OBJ, in the garments' frame")->required();
+  cmd->add_option("--avatar", options->avatar,
+                  "Avatar OBJ or glTF (.glb/.gltf), in the garments' frame")
+      ->required();
+  cmd->add_option("--avatar-mesh", options->avatar_mesh,
+                  "glTF avatar: the mesh or node to check against (default: the first skinned "
+                  "mesh, else the first mesh)");
   cmd->add_option("--report", options->report, "Write the JSON validation report here");
   cmd->add_option("--marks", options->marks, "Write an OBJ of the offending faces here");
   cmd->add_option("--html", options->html,
@@ -93,6 +99,7 @@ void add_validate_command(CLI::App& root, int& exit_code) {
                                    options->sources.size(), options->garments.size()));
     ValidationOptions validation_options;
     validation_options.threshold = options->threshold;
+    validation_options.avatar_mesh = options->avatar_mesh;
     const Validation validation =
         validate_files(options->garments, options->avatar, validation_options);
     const std::vector<ShapeChange> shapes = measure_against_sources(validation, options->sources);

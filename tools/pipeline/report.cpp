@@ -103,6 +103,12 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"certified", r.certified},
       {"warnings", r.warnings},
   };
+  report["skin"] = {{"written", r.skin.written},
+                    {"joints", r.skin.joints},
+                    {"matched_vertices", r.skin.matched},
+                    {"inpainted_vertices", r.skin.inpainted},
+                    {"unreached_vertices", r.skin.unreached},
+                    {"seconds", r.skin.seconds}};
   return report;
 }
 

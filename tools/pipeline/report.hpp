@@ -19,6 +19,16 @@ struct StageSeconds {
          total = 0;
 };
 
+/// The skin written with a glTF garment (weights transferred from the avatar's skin).
+struct SkinTransferReport {
+  bool written = false;
+  int joints = 0;
+  int matched = 0;    ///< vertices that took the avatar's weights at their closest point
+  int inpainted = 0;  ///< vertices filled in by the Laplacian solve
+  int unreached = 0;  ///< of matched: in a part with no match, taken without the thresholds
+  double seconds = 0.0;
+};
+
 /// What a retarget run did and measured; written as report.json.
 struct RetargetReport {
   Quality quality = Quality::kBalanced;
@@ -68,6 +78,7 @@ struct RetargetReport {
 
   bool certified = false;
   std::vector<std::string> warnings;
+  SkinTransferReport skin;
 };
 
 nlohmann::json to_json(const RetargetReport& report);

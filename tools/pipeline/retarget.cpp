@@ -326,9 +326,80 @@ FitResult fit_stage(Run& run, SolverScene& solver, const MatrixX3d& inflated) {
   return fit;
 }
 
+/// The avatar's skin carried to the garment's document positions (#J×#P), by transfer
+/// onto the written garment (welded, avatar units); unreferenced positions follow joint 0.
+Eigen::MatrixXd garment_skin_weights(Run& run, const Inputs& in, const SkinBinding& skin,
+                                     const MatrixX3d& garment_avatar_units) {
+  const Scene& scene = in.scene;
+  Eigen::MatrixXd body_weights(scene.avatar.sim_to_obj.size(), skin.weights.rows());
+  for (std::size_t s = 0; s < scene.avatar.sim_to_obj.size(); ++s)
+    body_weights.row(static_cast<Eigen::Index>(s)) =
+        skin.weights.col(scene.avatar.sim_to_obj[s]).transpose();
+  const TriangleMesh written{garment_avatar_units, scene.garment.mesh.faces};
+  const SkinTransferResult transfer =
+      transfer_skin_weights(scene.avatar.mesh, body_weights, written, run.options.skin_transfer);
+  SkinTransferReport& report = run.report().skin;
+  report = SkinTransferReport{true,
+                              static_cast<int>(skin.joints.size()),
+                              transfer.matched,
+                              transfer.inpainted,
+                              transfer.unreached,
+                              transfer.seconds};
+  run.progress.log("skin",
+                   "{} of {} garment vertices took the avatar's weights directly, {} "
+                   "inpainted ({:.2f} s)",
+                   transfer.matched, written.vertices.rows(), transfer.inpainted, transfer.seconds);
+  Eigen::MatrixXd weights =
+      Eigen::MatrixXd::Zero(skin.weights.rows(), scene.garment_document.positions.rows());
+  for (Eigen::Index p = 0; p < weights.cols(); ++p) {
+    const int s = scene.garment.obj_to_sim[static_cast<std::size_t>(p)];
+    if (s >= 0)
+      weights.col(p) = transfer.weights.row(s).transpose();
+    else
+      weights(0, p) = 1.0;
+  }
+  return weights;
+}
+
+/// Writes the garment (normalized #Vg×3) as a GLB in the avatar's frame and units, skinned
+/// over the avatar's skeleton when the avatar has one.
+void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const MatrixX3d>& garment) {
+  const Normalization& n = in.normalized.normalization;
+  const MatrixX3d welded = n.avatar_to_scene.invert_rows(garment);
+  const MatrixX3d positions = export_positions(
+      in.scene.garment_document, in.scene.garment, welded,
+      [&](const Vector3d& p) { return n.avatar_to_scene.invert(n.garment_to_scene.apply(p)); });
+  const GltfDocument* source = in.scene.garment_gltf ? &*in.scene.garment_gltf : nullptr;
+  if (!source && !in.scene.garment_document.material_libraries.empty())
+    run.warn("the OBJ garment's materials are not carried into the GLB (UVs are)");
+  const std::optional<SkinBinding> avatar_skin = avatar_skin_for_export(in.scene);
+  if (!avatar_skin) {
+    run.warn(
+        "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
+        "without a skin");
+    write_glb(run.result.garment_path, in.scene.garment_document, source, positions, nullptr);
+    return;
+  }
+  if (!in.scene.avatar_skin)
+    run.warn(
+        "the avatar has no skin weights: the GLB's skin takes the avatar's vertices bound "
+        "to their nearest bones");
+  SkinBinding skin = *avatar_skin;
+  skin.weights = garment_skin_weights(run, in, *avatar_skin, welded);
+  write_glb(run.result.garment_path, in.scene.garment_document, source, positions, &skin);
+}
+
 /// Write: the garment with its materials, in the avatar's frame and units.
 void write_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
   const StageTimer timer;
+  const std::string& format = run.options.format;
+  const bool glb = format.empty() ? in.scene.garment_gltf.has_value() : format == "glb";
+  if (glb) {
+    run.result.garment_path = (run.out / "garment.glb").string();
+    write_garment_glb(run, in, garment);
+    run.report().seconds.write = timer.seconds();
+    return;
+  }
   run.result.garment_path = (run.out / "garment.obj").string();
   for (const auto& warning : copy_material_files(in.scene.garment_document, run.options.out_dir))
     run.report().warnings.push_back(warning);
@@ -352,8 +423,10 @@ Certificate certify_stage(Run& run) {
       {"parameters", to_json(run.report())["parameters"]},
       {"shape", shape_report(run.report().shape, run.report().shape_thresholds)},
       {"quality", to_string(options.quality)}};
+  ValidationOptions validation;
+  validation.avatar_mesh = options.inputs.avatar_mesh;
   const Certificate certificate =
-      certify_garment(run.result.garment_path, options.inputs.avatar, extra);
+      certify_garment(run.result.garment_path, options.inputs.avatar, extra, validation);
   write_certificate((run.out / "certificate.json").string(), certificate);
   run.report().certified = certificate.certified();
   run.report().seconds.certify = timer.seconds();

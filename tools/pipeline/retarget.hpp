@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "core/skinning/skin_weight_transfer.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/report.hpp"
 #include "tools/pipeline/scene.hpp"
@@ -26,6 +27,11 @@ struct RetargetOptions {
   bool frames = false;  ///< write intermediate garment/avatar OBJs
   bool png = false;     ///< also write front.png and side.png beside report.html
   bool quiet = false;
+  /// Written garment format, "obj" or "glb"; empty: the garment's input format.
+  std::string format;
+  /// When a written GLB's skin takes the avatar's weights directly (see
+  /// transfer_skin_weights).
+  SkinTransferOptions skin_transfer;
 };
 
 /// How a retarget run ended; the command line maps it to an exit code.

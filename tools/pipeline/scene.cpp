@@ -6,14 +6,24 @@
 #include <fmt/format.h>
 
 #include "core/common/errors.hpp"
+#include "core/skeleton/skin_matching.hpp"
 
 namespace gr {
 
 namespace {
 
-SimulationMesh load_surface(const std::string& path, const char* role, ObjDocument& document,
+SimulationMesh load_surface(const std::string& path, const std::string& mesh_name, const char* role,
+                            ObjDocument& document, std::optional<GltfDocument>& gltf,
                             std::vector<std::string>& warnings) {
-  document = read_obj(path);
+  if (is_gltf_path(path)) {
+    GltfAsset asset = read_gltf(path, mesh_name);
+    document = std::move(asset.document);
+    gltf = std::move(asset.gltf);
+  } else {
+    if (!mesh_name.empty())
+      throw InputError(path, 0, fmt::format("--{}-mesh is for glTF files only", role));
+    document = read_obj(path);
+  }
   warnings.insert(warnings.end(), document.warnings.begin(), document.warnings.end());
   SimulationMesh sim = make_simulation_mesh(document);
   if (sim.mesh.faces.rows() == 0)
@@ -42,15 +52,45 @@ void require_edge_manifold(const SimulationMesh& sim, const std::string& path) {
     }
 }
 
+/// Without skeleton files, two skinned glTF files give the skeletons and skin weights.
+void skeletons_from_skins(const ScenePaths& paths, Scene& scene) {
+  const bool skinned_avatar =
+      scene.avatar_gltf && scene.avatar_gltf->skin && scene.avatar_gltf->skin->weights.cols() > 0;
+  if (skinned_avatar && !scene.avatar_skin) scene.avatar_skin = scene.avatar_gltf->skin;
+  const bool both_skins = scene.garment_gltf && scene.garment_gltf->skin && scene.avatar_gltf &&
+                          scene.avatar_gltf->skin;
+  if (!paths.joint_map.empty() && (!both_skins || scene.source_skeleton))
+    throw InputError(paths.joint_map, 0,
+                     "a joint map is for skinned glTF garment and avatar without skeleton files");
+  if (scene.source_skeleton || !both_skins) return;
+  const JointMap map = paths.joint_map.empty() ? JointMap{} : read_joint_map(paths.joint_map);
+  const SkinBinding& target_skin = *scene.avatar_gltf->skin;
+  const MatchedSkeletons matched =
+      match_skin_skeletons(*scene.garment_gltf->skin, target_skin, map, paths.avatar);
+  scene.source_skeleton = matched.source;
+  scene.target_skeleton = matched.target;
+  if (!skinned_avatar) return;
+  // Weights of target joints left out go to the nearest kept ancestor.
+  const auto& sim_to_obj = scene.avatar.sim_to_obj;
+  scene.skin_weights = Eigen::MatrixXd::Zero(matched.source.joints.rows(),
+                                             static_cast<Eigen::Index>(sim_to_obj.size()));
+  for (std::size_t j = 0; j < matched.kept_joint_of_target.size(); ++j)
+    for (std::size_t s = 0; s < sim_to_obj.size(); ++s)
+      scene.skin_weights(matched.kept_joint_of_target[j], static_cast<Eigen::Index>(s)) +=
+          target_skin.weights(static_cast<Eigen::Index>(j), sim_to_obj[s]);
+}
+
 }  // namespace
 
 Scene load_scene(const ScenePaths& paths) {
   if (paths.garment.empty()) throw InputError("", 0, "no garment file given");
   if (paths.avatar.empty()) throw InputError("", 0, "no avatar file given");
   Scene scene;
-  scene.garment = load_surface(paths.garment, "garment", scene.garment_document, scene.warnings);
+  scene.garment = load_surface(paths.garment, paths.garment_mesh, "garment", scene.garment_document,
+                               scene.garment_gltf, scene.warnings);
   require_edge_manifold(scene.garment, paths.garment);
-  scene.avatar = load_surface(paths.avatar, "avatar", scene.avatar_document, scene.warnings);
+  scene.avatar = load_surface(paths.avatar, paths.avatar_mesh, "avatar", scene.avatar_document,
+                              scene.avatar_gltf, scene.warnings);
 
   if (paths.source_skeleton.empty() != paths.target_skeleton.empty())
     throw InputError(paths.source_skeleton.empty() ? paths.target_skeleton : paths.source_skeleton,
@@ -71,7 +111,9 @@ Scene load_scene(const ScenePaths& paths) {
     scene.skin_weights.resize(joints, static_cast<Eigen::Index>(sim_to_obj.size()));
     for (std::size_t s = 0; s < sim_to_obj.size(); ++s)
       scene.skin_weights.col(static_cast<Eigen::Index>(s)) = per_obj_vertex.col(sim_to_obj[s]);
+    scene.avatar_skin = skin_of_skeleton(*scene.target_skeleton, per_obj_vertex);
   }
+  skeletons_from_skins(paths, scene);
 
   if (!paths.no_fit.empty()) {
     const auto ids =
@@ -84,6 +126,21 @@ Scene load_scene(const ScenePaths& paths) {
     scene.no_fit.erase(std::unique(scene.no_fit.begin(), scene.no_fit.end()), scene.no_fit.end());
   }
   return scene;
+}
+
+std::optional<SkinBinding> avatar_skin_for_export(const Scene& scene) {
+  if (scene.avatar_skin) return scene.avatar_skin;
+  const MatrixX3d& positions = scene.avatar_document.positions;
+  if (scene.avatar_gltf && scene.avatar_gltf->skin) {
+    SkinBinding skin = *scene.avatar_gltf->skin;
+    skin.weights =
+        nearest_bone_weights(skeleton_of_skin(skin, scene.avatar_document.source_path), positions);
+    return skin;
+  }
+  if (scene.target_skeleton)
+    return skin_of_skeleton(*scene.target_skeleton,
+                            nearest_bone_weights(*scene.target_skeleton, positions));
+  return std::nullopt;
 }
 
 }  // namespace gr

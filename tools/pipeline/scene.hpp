@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/gltf_document.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 #include "core/mesh/simulation_mesh.hpp"
@@ -18,6 +19,10 @@ struct ScenePaths {
   std::string target_skeleton;
   std::string skin_weights;  ///< #joints × #avatar OBJ vertices; needs skeletons
   std::string no_fit;        ///< 0-based garment OBJ vertex ids
+  // Initialized so brace lists that stop at no_fit stay warning-free.
+  std::string garment_mesh{};  ///< glTF garment: the mesh (or node) to read; empty: the default
+  std::string avatar_mesh{};   ///< glTF avatar: the same
+  std::string joint_map{};     ///< glTF skins: source joint name -> target joint name
 };
 
 /// A scene as read and checked, in the files' own units and frames.
@@ -31,12 +36,27 @@ struct Scene {
   Eigen::MatrixXd skin_weights;  ///< #joints × #avatar welded vertices; empty when not given
   std::vector<int> no_fit;       ///< welded garment vertex ids
   std::vector<std::string> warnings;
+  std::optional<GltfDocument> garment_gltf;  ///< set when the garment was read from glTF
+  std::optional<GltfDocument> avatar_gltf;   ///< set when the avatar was read from glTF
+  /// The avatar's skin over its whole skeleton, weights #J×#avatar document positions:
+  /// its glTF skin, else the target skeleton with the skin weights file; unset without.
+  std::optional<SkinBinding> avatar_skin;
 };
 
-/// Reads and checks every file of a scene.
+/// Reads and checks every file of a scene. Garment and avatar may be OBJ or glTF (see
+/// read_gltf); without skeleton files, two skinned glTF files give the skeletons (their
+/// skins' joints matched by name, through the joint map when given) and the avatar's skin
+/// gives the skin weights.
 /// @throw InputError for any bad file or inconsistency between files (a skeleton without
 ///        its partner, skeletons that do not correspond, skin weights without skeletons
-///        or of the wrong shape, a garment or avatar with no face).
+///        or of the wrong shape, a garment or avatar with no face, skins whose joints do
+///        not match, a joint map without two skins).
 Scene load_scene(const ScenePaths& paths);
+
+/// The avatar's skin for a written GLB: `scene.avatar_skin`, else its skeleton (a glTF
+/// skin without weights, or the target skeleton) with every vertex bound to its nearest
+/// bone (nearest_bone_weights); unset when the avatar has no skeleton.
+/// @throw InputError when a glTF skin without weights has no bone.
+std::optional<SkinBinding> avatar_skin_for_export(const Scene& scene);
 
 }  // namespace gr

@@ -102,8 +102,8 @@ TriangleMesh mesh_as_written(const ObjDocument& document) {
   return mesh;
 }
 
-CheckedFile read_checked_file(const std::string& path) {
-  ObjDocument document = read_obj(path);
+CheckedFile read_checked_file(const std::string& path, const std::string& mesh_name) {
+  ObjDocument document = read_surface_document(path, mesh_name);
   if (document.faces.empty()) throw InputError(path, 0, "has no face to validate");
   CheckedFile file;
   file.path = path;
@@ -121,7 +121,7 @@ Validation validate_files(const std::vector<std::string>& garment_paths,
   Validation v;
   v.options = options;
   for (const std::string& path : garment_paths) v.garments.push_back(read_checked_file(path));
-  v.avatar = read_checked_file(avatar_path);
+  v.avatar = read_checked_file(avatar_path, options.avatar_mesh);
   std::vector<TriangleMesh> garments;
   for (const CheckedFile& g : v.garments) garments.push_back(g.mesh);
   v.result = validate_meshes(garments, v.avatar.mesh, options);

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/common/types.hpp"
-#include "core/io/obj_document.hpp"
+#include "core/io/gltf_document.hpp"
 #include "validate/checks/clearance.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 #include "validate/checks/self_intersections.hpp"
@@ -16,6 +16,8 @@ namespace gr {
 struct ValidationOptions {
   /// Count garment vertices closer than this to the avatar (input units); none when unset.
   std::optional<double> threshold;
+  /// glTF avatar: the mesh (or node) to check against; empty: read_gltf's default.
+  std::string avatar_mesh;
 };
 
 /// Everything found about one garment. Face indices are rows of the checked meshes.
@@ -86,10 +88,11 @@ struct CheckedFile {
   std::vector<std::string> warnings;  ///< the reader's, e.g. polygons triangulated
 };
 
-/// Reads an OBJ file for validation: positions and faces exactly as written (polygons
-/// fan-triangulated by the reader), no welding, no dropped face; and its SHA-256.
+/// Reads an OBJ or glTF file for validation (see read_surface_document): positions and
+/// faces exactly as written (polygons fan-triangulated by the reader; glTF node transforms
+/// applied), no welding, no dropped face; and its SHA-256.
 /// @throw InputError when the file is missing or malformed or has no face.
-CheckedFile read_checked_file(const std::string& path);
+CheckedFile read_checked_file(const std::string& path, const std::string& mesh_name = "");
 
 /// Files read and every check run on them.
 struct Validation {

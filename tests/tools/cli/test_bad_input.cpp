@@ -322,3 +322,14 @@ TEST_CASE("bad input: garment through the avatar's core, no shrink frees it", "[
   CHECK_FALSE(fs::exists(out / "garment.obj"));
   CHECK_FALSE(fs::exists(out / "certificate.json"));
 }
+
+TEST_CASE("bad input: a .glb that is not glTF", "[cli][errors][gltf]") {
+  write_text(bad_input_dir() / "not_gltf.glb", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  check_bad_input({"--garment", "{D}/not_gltf.glb", "--avatar", "{A}"}, 2,
+                  "not_gltf.glb: is not a glTF file");
+}
+
+TEST_CASE("bad input: a mesh name for an OBJ", "[cli][errors][gltf]") {
+  check_bad_input({"--garment", "{G}", "--avatar", "{A}", "--avatar-mesh", "body"}, 2,
+                  "--avatar-mesh is for glTF files only");
+}

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/types.hpp"
+#include "core/io/obj_document.hpp"
+#include "core/io/rig_files.hpp"
+
+namespace gr {
+
+/// The parsed glTF model (tinygltf), kept whole so a written file carries the input's
+/// materials, textures and extra vertex attributes. Opaque outside core/io.
+struct GltfModel;
+
+/// One joint of a skin, in the asset's world frame at rest.
+struct SkinJoint {
+  std::string name;              ///< the node's name; `joint_<i>` when it has none
+  int parent = -1;               ///< nearest ancestor that is a joint of the same skin, or -1
+  Eigen::Matrix4d world;         ///< the joint node's world matrix in the rest pose
+  Eigen::Matrix4d inverse_bind;  ///< as read (identity when the skin gives none)
+};
+
+/// A skin: joints, and per document position the weight of each joint.
+struct SkinBinding {
+  std::vector<SkinJoint> joints;
+  Eigen::MatrixXd weights;  ///< #J×#P; empty (0×0) when the mesh has no JOINTS_0/WEIGHTS_0
+};
+
+/// Where one merged glTF primitive sits in the document.
+struct GltfPrimitive {
+  int source = 0;          ///< primitive index in the source mesh
+  int first_position = 0;  ///< its first vertex among the document's positions
+  int position_count = 0;
+  int first_face = 0;  ///< its first triangle among the document's faces
+  int face_count = 0;
+};
+
+/// A glTF mesh as read: its TRIANGLES primitives merged into `GltfAsset::document`
+/// (position, texcoord and normal index of a corner are the vertex's merged index).
+struct GltfDocument {
+  std::shared_ptr<const GltfModel> model;
+  int mesh = -1;
+  std::string mesh_name;
+  std::vector<GltfPrimitive> primitives;
+  bool has_tangents = false;        ///< some primitive had a TANGENT attribute
+  std::optional<SkinBinding> skin;  ///< the skin of the node that places the mesh
+};
+
+/// A glTF mesh as an OBJ-like document (for the pipeline) plus what writing it back needs.
+struct GltfAsset {
+  ObjDocument document;
+  GltfDocument gltf;
+};
+
+/// Whether `path` names a glTF file by its extension (`.glb` or `.gltf`, any case).
+bool is_gltf_path(const std::string& path);
+
+/// Reads one mesh of a glTF 2.0 file (binary `.glb` or JSON `.gltf`): the node named or
+/// whose mesh is named `mesh_name`, else the first node with a skinned mesh, else the first
+/// node with a mesh, in scene order. Every TRIANGLES primitive is merged (positions in
+/// the world frame of the rest pose: node transforms applied, skinned meshes posed by
+/// their skin); POINTS and LINES primitives are skipped with a warning. Texture
+/// coordinates are stored flipped (v' = 1 - v) as an OBJ would hold them. Images are
+/// kept as encoded bytes, never decoded.
+/// @throw InputError naming the file for: a file that is neither GLB nor glTF JSON, a
+///        parse error, a missing buffer or one outside the asset's folder, a strip or fan
+///        primitive, an accessor out of range or of the wrong type, a sparse accessor,
+///        Draco or meshopt compression, a missing mesh name (the message lists the
+///        names), or a mesh with no triangle.
+GltfAsset read_gltf(const std::string& path, const std::string& mesh_name = "");
+
+/// Reads a surface of either format: `read_gltf(path, mesh_name).document` for `.glb` and
+/// `.gltf`, else `read_obj(path)`.
+/// @throw InputError as the reader used.
+ObjDocument read_surface_document(const std::string& path, const std::string& mesh_name = "");
+
+/// The skeleton of a skin: joint world positions (#J×3) and one bone per joint with a
+/// parent (parent, joint).
+/// @throw InputError naming `path` when the skin has no bone.
+Skeleton skeleton_of_skin(const SkinBinding& skin, const std::string& path);
+
+/// Writes `document` as a binary glTF (GLB) with `positions` (#P×3, document order, in the
+/// frame the file should hold; stored as 32-bit floats as glTF requires). With `source`
+/// (the document was read from glTF) its primitives, materials, textures (embedded) and
+/// other vertex attributes are kept; without, one primitive with the document's texture
+/// coordinates. Normals are recomputed (area-weighted per vertex over the faces that share
+/// its position and input normal), tangents too when the source had them. With `skin`
+/// (#J×#P weights) the mesh is skinned over its joints, written as nodes in the same rest
+/// pose with inverse bind matrices that make the rest pose the written positions; each
+/// vertex keeps its 4 largest weights, renormalized to sum 1.
+/// @pre document faces index `positions`; `skin->weights` has #P columns and no negative
+///      entry; every vertex of a face has a positive weight sum.
+/// @throw OutputError when the file cannot be written.
+void write_glb(const std::string& path, const ObjDocument& document, const GltfDocument* source,
+               const Eigen::Ref<const MatrixX3d>& positions, const SkinBinding* skin);
+
+}  // namespace gr

@@ -1,0 +1,455 @@
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <numeric>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "core/common/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/io/gltf_accessors.hpp"
+#include "core/io/gltf_document.hpp"
+#include "core/io/gltf_model.hpp"
+
+namespace gr {
+
+namespace {
+
+/// Influences kept per vertex: one JOINTS_0/WEIGHTS_0 pair, what every engine reads.
+constexpr int kInfluences = 4;
+
+/// The GLB being assembled: one binary buffer, views and accessors appended to it.
+class GlbBuilder {
+ public:
+  tinygltf::Model model;
+
+  GlbBuilder() {
+    model.asset.version = "2.0";
+    model.asset.generator = "garment-retarget " GR_VERSION;
+    model.buffers.emplace_back();
+  }
+
+  int add_view(const void* data, std::size_t size, int target) {
+    auto& bin = model.buffers[0].data;
+    bin.resize((bin.size() + 3) / 4 * 4, 0);  // views start 4-byte aligned
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = bin.size();
+    view.byteLength = size;
+    view.target = target;
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    bin.insert(bin.end(), bytes, bytes + size);
+    model.bufferViews.push_back(view);
+    return static_cast<int>(model.bufferViews.size()) - 1;
+  }
+
+  int add_accessor(int view, int component_type, int type, std::size_t count,
+                   bool normalized = false, std::vector<double> min = {},
+                   std::vector<double> max = {}) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = component_type;
+    a.type = type;
+    a.count = count;
+    a.normalized = normalized;
+    a.minValues = std::move(min);
+    a.maxValues = std::move(max);
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size()) - 1;
+  }
+
+  /// A float accessor of `count` elements of `components` values each.
+  int add_floats(const std::vector<float>& values, int type, int components, int target,
+                 bool bounds) {
+    const std::size_t count = values.size() / static_cast<std::size_t>(components);
+    std::vector<double> min;
+    std::vector<double> max;
+    if (bounds && count > 0) {
+      min.assign(static_cast<std::size_t>(components), std::numeric_limits<double>::infinity());
+      max.assign(static_cast<std::size_t>(components), -std::numeric_limits<double>::infinity());
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const auto c = i % static_cast<std::size_t>(components);
+        min[c] = std::min(min[c], static_cast<double>(values[i]));
+        max[c] = std::max(max[c], static_cast<double>(values[i]));
+      }
+    }
+    const int view = add_view(values.data(), values.size() * sizeof(float), target);
+    return add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, type, count, false, min, max);
+  }
+};
+
+/// One primitive to write: per vertex its document position and normal (-1: none) and its
+/// texture coordinate in glTF's convention; triangles over these vertices.
+struct OutPrimitive {
+  std::vector<int> position;
+  std::vector<int> normal;
+  std::vector<std::array<double, 2>> uv;  ///< empty when the primitive has none
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  const tinygltf::Primitive* source = nullptr;
+  int material = -1;
+};
+
+using NormalKey = std::array<double, 6>;
+
+NormalKey normal_key(const MatrixX3d& positions, const ObjDocument& document, int p, int n) {
+  NormalKey key{positions(p, 0), positions(p, 1), positions(p, 2), 0.0, 0.0, 0.0};
+  if (n >= 0)
+    for (int c = 0; c < 3; ++c) key[3 + static_cast<std::size_t>(c)] = document.normals(n, c);
+  return key;
+}
+
+/// Unit normals per vertex of every primitive: faces sharing a position and input normal
+/// are averaged by area, so sharp edges (split input normals) stay sharp.
+std::vector<std::vector<Vector3d>> vertex_normals(const std::vector<OutPrimitive>& primitives,
+                                                  const ObjDocument& document,
+                                                  const MatrixX3d& positions) {
+  std::map<NormalKey, Vector3d> sums;
+  for (const OutPrimitive& p : primitives)
+    for (const auto& t : p.triangles) {
+      const Vector3d a = positions.row(p.position[t[0]]).transpose();
+      const Vector3d b = positions.row(p.position[t[1]]).transpose();
+      const Vector3d c = positions.row(p.position[t[2]]).transpose();
+      const Vector3d area_normal = (b - a).cross(c - a);
+      for (const std::uint32_t v : t) {
+        auto [it, inserted] = sums.try_emplace(
+            normal_key(positions, document, p.position[v], p.normal[v]), Vector3d::Zero());
+        it->second += area_normal;
+      }
+    }
+  std::vector<std::vector<Vector3d>> normals;
+  for (const OutPrimitive& p : primitives) {
+    auto& out = normals.emplace_back(p.position.size(), Vector3d::UnitZ());
+    for (std::size_t v = 0; v < p.position.size(); ++v) {
+      const auto it = sums.find(normal_key(positions, document, p.position[v], p.normal[v]));
+      // An unreferenced vertex or one with only zero-area faces keeps its input normal.
+      if (it != sums.end() && it->second.norm() > 0.0)
+        out[v] = it->second.normalized();
+      else if (p.normal[v] >= 0 && document.normals.row(p.normal[v]).norm() > 0.0)
+        out[v] = document.normals.row(p.normal[v]).transpose().normalized();
+    }
+  }
+  return normals;
+}
+
+/// Tangents (xyz, handedness w) from texture coordinates, orthogonal to the normals.
+std::vector<float> vertex_tangents(const OutPrimitive& p, const MatrixX3d& positions,
+                                   const std::vector<Vector3d>& normals) {
+  const std::size_t n = p.position.size();
+  std::vector<Vector3d> tangent(n, Vector3d::Zero());
+  std::vector<Vector3d> bitangent(n, Vector3d::Zero());
+  for (const auto& t : p.triangles) {
+    const Vector3d e1 = positions.row(p.position[t[1]]) - positions.row(p.position[t[0]]);
+    const Vector3d e2 = positions.row(p.position[t[2]]) - positions.row(p.position[t[0]]);
+    const double du1 = p.uv[t[1]][0] - p.uv[t[0]][0];
+    const double dv1 = p.uv[t[1]][1] - p.uv[t[0]][1];
+    const double du2 = p.uv[t[2]][0] - p.uv[t[0]][0];
+    const double dv2 = p.uv[t[2]][1] - p.uv[t[0]][1];
+    const double det = du1 * dv2 - du2 * dv1;
+    if (det == 0.0) continue;
+    const Vector3d sdir = (dv2 * e1 - dv1 * e2) / det;
+    const Vector3d tdir = (du1 * e2 - du2 * e1) / det;
+    for (const std::uint32_t v : t) {
+      tangent[v] += sdir;
+      bitangent[v] += tdir;
+    }
+  }
+  std::vector<float> out;
+  out.reserve(4 * n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vector3d& normal = normals[v];
+    Vector3d t = tangent[v] - normal * normal.dot(tangent[v]);
+    if (t.norm() <= 1e-12 * tangent[v].norm() || t.norm() == 0.0)
+      t = normal.unitOrthogonal();  // no usable UV gradient: any direction in the plane
+    t.normalize();
+    // glTF's bitangent is cross(normal, tangent) * w; its v axis points down the image.
+    const double w = normal.cross(t).dot(bitangent[v]) < 0.0 ? 1.0 : -1.0;
+    out.insert(out.end(), {static_cast<float>(t.x()), static_cast<float>(t.y()),
+                           static_cast<float>(t.z()), static_cast<float>(w)});
+  }
+  return out;
+}
+
+std::vector<OutPrimitive> primitives_from_gltf(const ObjDocument& document,
+                                               const GltfDocument& source) {
+  const tinygltf::Model& model = source.model->model;
+  const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(source.mesh)];
+  std::vector<OutPrimitive> out;
+  for (const GltfPrimitive& part : source.primitives) {
+    OutPrimitive& p = out.emplace_back();
+    p.source = &mesh.primitives[static_cast<std::size_t>(part.source)];
+    p.material = p.source->material;
+    for (int v = 0; v < part.position_count; ++v) {
+      p.position.push_back(part.first_position + v);
+      p.normal.push_back(document.normals.rows() > 0 ? part.first_position + v : -1);
+    }
+    if (const auto it = p.source->attributes.find("TEXCOORD_0"); it != p.source->attributes.end()) {
+      const std::vector<double> uv = read_accessor(model, it->second, TINYGLTF_TYPE_VEC2,
+                                                   static_cast<std::size_t>(part.position_count),
+                                                   document.source_path, "TEXCOORD_0");
+      for (std::size_t v = 0; v < uv.size(); v += 2) p.uv.push_back({uv[v], uv[v + 1]});
+    }
+    for (int f = part.first_face; f < part.first_face + part.face_count; ++f) {
+      std::array<std::uint32_t, 3> t{};
+      for (std::size_t c = 0; c < 3; ++c)
+        t[c] = static_cast<std::uint32_t>(document.faces[static_cast<std::size_t>(f)][c].position -
+                                          part.first_position);
+      p.triangles.push_back(t);
+    }
+  }
+  return out;
+}
+
+/// An OBJ document as one primitive: a vertex per distinct (position, texcoord, normal),
+/// in the order of the OBJ's positions, so the welded vertices keep the OBJ's order.
+std::vector<OutPrimitive> primitives_from_obj(const ObjDocument& document) {
+  std::vector<OutPrimitive> out(1);
+  OutPrimitive& p = out[0];
+  const bool has_uv = std::all_of(document.faces.begin(), document.faces.end(), [](const auto& f) {
+    return f[0].texcoord >= 0 && f[1].texcoord >= 0 && f[2].texcoord >= 0;
+  });
+  const auto key = [&](const ObjCorner& corner) {
+    return std::make_tuple(corner.position, has_uv ? corner.texcoord : -1, corner.normal);
+  };
+  std::map<std::tuple<int, int, int>, std::uint32_t> vertex_of;
+  for (const auto& face : document.faces)
+    for (const ObjCorner& corner : face) vertex_of.emplace(key(corner), 0);
+  for (auto& [corner, vertex] : vertex_of) {
+    const auto [position, uv, normal] = corner;
+    vertex = static_cast<std::uint32_t>(p.position.size());
+    p.position.push_back(position);
+    p.normal.push_back(normal);
+    if (has_uv) {
+      const auto& tc = document.texcoords[static_cast<std::size_t>(uv)];
+      p.uv.push_back({tc[0], 1.0 - tc[1]});
+    }
+  }
+  for (const auto& face : document.faces)
+    p.triangles.push_back(
+        {vertex_of.at(key(face[0])), vertex_of.at(key(face[1])), vertex_of.at(key(face[2]))});
+  return out;
+}
+
+/// Copies the source model's materials, textures, samplers and images, the images embedded.
+void copy_materials(const tinygltf::Model& source, GlbBuilder& glb) {
+  glb.model.materials = source.materials;
+  glb.model.textures = source.textures;
+  glb.model.samplers = source.samplers;
+  for (tinygltf::Image image : source.images) {
+    if (!image.image.empty()) {
+      image.bufferView = glb.add_view(image.image.data(), image.image.size(), 0);
+      if (image.mimeType.empty()) {
+        const bool png =
+            image.image.size() > 4 && std::memcmp(image.image.data(), "\x89PNG", 4) == 0;
+        image.mimeType = png ? "image/png" : "image/jpeg";
+      }
+      image.uri.clear();
+    }
+    image.image.clear();
+    image.as_is = false;
+    glb.model.images.push_back(std::move(image));
+  }
+  for (const std::string& extension : source.extensionsUsed)
+    if (extension != "KHR_draco_mesh_compression" && extension != "EXT_meshopt_compression")
+      glb.model.extensionsUsed.push_back(extension);
+  for (const std::string& extension : source.extensionsRequired)
+    if (extension != "KHR_draco_mesh_compression" && extension != "EXT_meshopt_compression")
+      glb.model.extensionsRequired.push_back(extension);
+}
+
+/// Copies a source attribute's elements as stored (texture coordinates, colours, ...).
+int copy_attribute(const tinygltf::Model& source, int index, const std::string& path,
+                   GlbBuilder& glb) {
+  const std::vector<unsigned char> bytes = read_accessor_bytes(source, index, path, "attribute");
+  const tinygltf::Accessor& a = source.accessors[static_cast<std::size_t>(index)];
+  const int view = glb.add_view(bytes.data(), bytes.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+  return glb.add_accessor(view, a.componentType, a.type, a.count, a.normalized, a.minValues,
+                          a.maxValues);
+}
+
+/// The skin's joints as nodes (after the mesh node, same order) with the skin over them.
+void add_skin(const SkinBinding& skin, GlbBuilder& glb, std::vector<int>& scene_roots) {
+  const int first = static_cast<int>(glb.model.nodes.size());
+  std::vector<float> inverse_bind;
+  tinygltf::Skin out;
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const SkinJoint& joint = skin.joints[j];
+    tinygltf::Node node;
+    node.name = joint.name;
+    const Eigen::Matrix4d local =
+        joint.parent >= 0
+            ? Eigen::Matrix4d(skin.joints[static_cast<std::size_t>(joint.parent)].world.inverse() *
+                              joint.world)
+            : joint.world;
+    const Eigen::Affine3d affine(local);
+    Eigen::Matrix3d rotation;
+    Eigen::Matrix3d scaling;
+    affine.computeRotationScaling(&rotation, &scaling);
+    const Eigen::Quaterniond q(rotation);
+    node.translation = {local(0, 3), local(1, 3), local(2, 3)};
+    node.rotation = {q.x(), q.y(), q.z(), q.w()};
+    node.scale = {scaling(0, 0), scaling(1, 1), scaling(2, 2)};
+    glb.model.nodes.push_back(node);
+    if (joint.parent < 0) scene_roots.push_back(first + static_cast<int>(j));
+    out.joints.push_back(first + static_cast<int>(j));
+  }
+  // The rest pose the nodes give, so that rest positions are bind positions.
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const Eigen::Matrix4d ibm = skin.joints[j].world.inverse();
+    for (int i = 0; i < 16; ++i) inverse_bind.push_back(static_cast<float>(ibm(i % 4, i / 4)));
+  }
+  for (std::size_t j = 0; j < skin.joints.size(); ++j)
+    if (skin.joints[j].parent >= 0)
+      glb.model.nodes[static_cast<std::size_t>(first + skin.joints[j].parent)].children.push_back(
+          first + static_cast<int>(j));
+  out.inverseBindMatrices = glb.add_floats(inverse_bind, TINYGLTF_TYPE_MAT4, 16, 0, false);
+  if (std::count_if(skin.joints.begin(), skin.joints.end(),
+                    [](const SkinJoint& j) { return j.parent < 0; }) == 1)
+    out.skeleton = scene_roots.back();
+  glb.model.skins.push_back(out);
+}
+
+/// JOINTS_0 and WEIGHTS_0 for the vertices of `p`: the 4 largest weights, summing to 1.
+std::pair<int, int> add_influences(const OutPrimitive& p, const SkinBinding& skin,
+                                   GlbBuilder& glb) {
+  const auto joints = static_cast<int>(skin.weights.rows());
+  const bool bytes = joints <= 256;
+  std::vector<std::uint8_t> joint_bytes;
+  std::vector<std::uint16_t> joint_shorts;
+  std::vector<float> weights;
+  std::vector<int> order(static_cast<std::size_t>(joints));
+  for (const int position : p.position) {
+    const auto column = skin.weights.col(position);
+    std::iota(order.begin(), order.end(), 0);
+    const int kept = std::min(kInfluences, joints);
+    std::partial_sort(order.begin(), order.begin() + kept, order.end(),
+                      [&](int a, int b) { return column(a) > column(b); });
+    double total = 0.0;
+    for (int k = 0; k < kept; ++k) total += column(order[static_cast<std::size_t>(k)]);
+    std::array<float, kInfluences> w{};
+    std::array<int, kInfluences> j{};
+    for (int k = 0; k < kept; ++k) {
+      const int joint = order[static_cast<std::size_t>(k)];
+      const double share = total > 0.0 ? column(joint) / total : (k == 0 ? 1.0 : 0.0);
+      w[static_cast<std::size_t>(k)] = static_cast<float>(share);
+      // A zero weight points at joint 0 with the others, never at a duplicate joint.
+      j[static_cast<std::size_t>(k)] = share > 0.0 ? joint : 0;
+    }
+    // Float rounding may leave the sum off 1 by an ulp or two; the largest absorbs it.
+    float sum = 0.0F;
+    for (int k = 1; k < kInfluences; ++k) sum += w[static_cast<std::size_t>(k)];
+    w[0] = 1.0F - sum;
+    for (int k = 0; k < kInfluences; ++k) {
+      weights.push_back(w[static_cast<std::size_t>(k)]);
+      if (bytes)
+        joint_bytes.push_back(static_cast<std::uint8_t>(j[static_cast<std::size_t>(k)]));
+      else
+        joint_shorts.push_back(static_cast<std::uint16_t>(j[static_cast<std::size_t>(k)]));
+    }
+  }
+  const std::size_t count = p.position.size();
+  const int joint_view =
+      bytes ? glb.add_view(joint_bytes.data(), joint_bytes.size(), TINYGLTF_TARGET_ARRAY_BUFFER)
+            : glb.add_view(joint_shorts.data(), joint_shorts.size() * 2,
+                           TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int joint_accessor = glb.add_accessor(
+      joint_view,
+      bytes ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE : TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+      TINYGLTF_TYPE_VEC4, count);
+  const int weight_accessor =
+      glb.add_floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  return {joint_accessor, weight_accessor};
+}
+
+bool is_rewritten_attribute(const std::string& name) {
+  return name == "POSITION" || name == "NORMAL" || name == "TANGENT" ||
+         name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0;
+}
+
+}  // namespace
+
+void write_glb(const std::string& path, const ObjDocument& document, const GltfDocument* source,
+               const Eigen::Ref<const MatrixX3d>& positions_in, const SkinBinding* skin) {
+  const MatrixX3d positions = positions_in;
+  GlbBuilder glb;
+  const std::vector<OutPrimitive> primitives =
+      source ? primitives_from_gltf(document, *source) : primitives_from_obj(document);
+  const std::vector<std::vector<Vector3d>> normals =
+      vertex_normals(primitives, document, positions);
+  if (source) copy_materials(source->model->model, glb);
+
+  tinygltf::Mesh mesh;
+  mesh.name =
+      source ? source->mesh_name : std::filesystem::path(document.source_path).stem().string();
+  if (mesh.name.empty()) mesh.name = "mesh";
+  for (std::size_t i = 0; i < primitives.size(); ++i) {
+    const OutPrimitive& p = primitives[i];
+    tinygltf::Primitive out;
+    out.mode = TINYGLTF_MODE_TRIANGLES;
+    out.material = p.material;
+    std::vector<float> xyz;
+    std::vector<float> nxyz;
+    for (std::size_t v = 0; v < p.position.size(); ++v)
+      for (int c = 0; c < 3; ++c) {
+        xyz.push_back(static_cast<float>(positions(p.position[v], c)));
+        nxyz.push_back(static_cast<float>(normals[i][v][c]));
+      }
+    out.attributes["POSITION"] =
+        glb.add_floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    out.attributes["NORMAL"] =
+        glb.add_floats(nxyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    if (source && source->has_tangents && !p.uv.empty())
+      out.attributes["TANGENT"] =
+          glb.add_floats(vertex_tangents(p, positions, normals[i]), TINYGLTF_TYPE_VEC4, 4,
+                         TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    if (p.source) {
+      for (const auto& [name, index] : p.source->attributes)
+        if (!is_rewritten_attribute(name))
+          out.attributes[name] =
+              copy_attribute(source->model->model, index, document.source_path, glb);
+    } else if (!p.uv.empty()) {
+      std::vector<float> uv;
+      for (const auto& tc : p.uv)
+        uv.insert(uv.end(), {static_cast<float>(tc[0]), static_cast<float>(tc[1])});
+      out.attributes["TEXCOORD_0"] =
+          glb.add_floats(uv, TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    }
+    if (skin && skin->weights.cols() > 0) {
+      const auto [joints, weights] = add_influences(p, *skin, glb);
+      out.attributes["JOINTS_0"] = joints;
+      out.attributes["WEIGHTS_0"] = weights;
+    }
+    std::vector<std::uint32_t> indices;
+    for (const auto& t : p.triangles) indices.insert(indices.end(), t.begin(), t.end());
+    const int view = glb.add_view(indices.data(), indices.size() * sizeof(std::uint32_t),
+                                  TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    out.indices = glb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                                   indices.size());
+    mesh.primitives.push_back(out);
+  }
+  glb.model.meshes.push_back(mesh);
+
+  tinygltf::Node mesh_node;
+  mesh_node.name = mesh.name;
+  mesh_node.mesh = 0;
+  glb.model.nodes.push_back(mesh_node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  if (skin && skin->weights.cols() > 0) {
+    glb.model.nodes[0].skin = 0;
+    add_skin(*skin, glb, scene.nodes);
+  }
+  glb.model.scenes.push_back(scene);
+  glb.model.defaultScene = 0;
+
+  write_file_atomically(path, [&](std::ostream& out) {
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&glb.model, out, false, true))
+      throw OutputError(fmt::format("{}: the glTF writer failed", path));
+  });
+}
+
+}  // namespace gr
