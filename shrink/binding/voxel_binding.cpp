@@ -27,20 +27,6 @@ constexpr double kBandVoxels = 3.0;
 /// it is bound through its mesh neighbours.
 constexpr int kAttachReachVoxels = 2;
 
-/// A bone or an end segment, and the joint its weight goes to.
-struct Segment {
-  Vector3d a, b;
-  int owner = 0;
-
-  Vector3d closest_point(const Vector3d& p) const {
-    const Vector3d ab = b - a;
-    const double length_sq = ab.squaredNorm();
-    const double s = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
-    return a + s * ab;
-  }
-  double distance(const Vector3d& p) const { return (closest_point(p) - p).norm(); }
-};
-
 void check_inputs(const TriangleMesh& avatar, const Skeleton& skeleton,
                   const BindingOptions& options) {
   if (avatar.faces.rows() == 0 || avatar.vertices.rows() == 0)
@@ -61,10 +47,17 @@ void check_inputs(const TriangleMesh& avatar, const Skeleton& skeleton,
         ">= 1 and end length >= 0");
 }
 
-/// The bones, each weighted to its joint nearer the root, and the end segments (see
-/// BindingOptions::end_angle_degrees). Joints no bone path joins to the root start their
-/// own tree at their lowest-numbered joint.
-std::vector<Segment> skeleton_segments(const Skeleton& skeleton, const BindingOptions& options) {
+}  // namespace
+
+Vector3d BoneSegment::closest_point(const Vector3d& p) const {
+  const Vector3d ab = b - a;
+  const double length_sq = ab.squaredNorm();
+  const double s = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
+  return a + s * ab;
+}
+
+std::vector<BoneSegment> skeleton_segments(const Skeleton& skeleton,
+                                           const BindingOptions& options) {
   const auto joint_count = static_cast<int>(skeleton.joints.rows());
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(joint_count));
   for (Eigen::Index b = 0; b < skeleton.bones.rows(); ++b) {
@@ -88,12 +81,14 @@ std::vector<Segment> skeleton_segments(const Skeleton& skeleton, const BindingOp
         }
   }
   const auto joint = [&](int j) -> Vector3d { return skeleton.joints.row(j).transpose(); };
-  std::vector<Segment> segments;
+  std::vector<BoneSegment> segments;
+  std::vector<int> parent_bone(static_cast<std::size_t>(joint_count), -1);
   std::vector<Vector3d> child_directions(static_cast<std::size_t>(joint_count), Vector3d::Zero());
   std::vector<int> child_count(static_cast<std::size_t>(joint_count), 0);
   for (int j : order) {
     const int p = parent[static_cast<std::size_t>(j)];
     if (p < 0) continue;
+    parent_bone[static_cast<std::size_t>(j)] = static_cast<int>(segments.size());
     segments.push_back({joint(p), joint(j), p});
     const Vector3d direction = joint(j) - joint(p);
     if (direction.norm() > 0.0)
@@ -110,10 +105,14 @@ std::vector<Segment> skeleton_segments(const Skeleton& skeleton, const BindingOp
     const bool leaf = child_count[static_cast<std::size_t>(j)] == 0;
     const bool turns_away =
         !leaf && (children.norm() == 0.0 || children.normalized().dot(bone.normalized()) < cos_end);
-    if (leaf || turns_away) segments.push_back({joint(j), joint(j) + options.end_length * bone, j});
+    if (leaf || turns_away)
+      segments.push_back({joint(j), joint(j) + options.end_length * bone, j,
+                          parent_bone[static_cast<std::size_t>(j)]});
   }
   return segments;
 }
+
+namespace {
 
 /// The avatar's interior on a dense voxel box: voxel (i, j, k) of the box has its centre at
 /// voxel_size * (origin + (i, j, k)).
@@ -183,7 +182,7 @@ class InteriorVoxels {
 /// Shortest-path distance from `segment` to every interior voxel, through interior voxels
 /// (26-neighbourhood, steps of their centres' distance). Seeds: the interior voxels within
 /// a voxel of the segment's nearest interior voxel distance, at their straight distance.
-std::vector<double> interior_distances(const InteriorVoxels& voxels, const Segment& segment) {
+std::vector<double> interior_distances(const InteriorVoxels& voxels, const BoneSegment& segment) {
   const int n = voxels.count();
   const double h = voxels.voxel_size();
   std::vector<double> straight(static_cast<std::size_t>(n));
@@ -256,7 +255,7 @@ bool sees_through_interior(const InteriorVoxels& voxels, const Vector3d& p, cons
 /// Per vertex, its distance to every segment (#V×#S, infinity where unreachable), through
 /// the interior; rows of vertices with no interior voxel near are all infinite.
 Eigen::MatrixXd vertex_segment_distances(const TriangleMesh& avatar,
-                                         const std::vector<Segment>& segments,
+                                         const std::vector<BoneSegment>& segments,
                                          const InteriorVoxels& voxels, BindingMethod method) {
   const Eigen::Index vertex_count = avatar.vertices.rows();
   const auto segment_count = static_cast<Eigen::Index>(segments.size());
@@ -296,7 +295,7 @@ Eigen::MatrixXd vertex_segment_distances(const TriangleMesh& avatar,
 /// Gives every vertex whose row is all infinite the row of the nearest (along mesh edges)
 /// vertex of its connected part that has a finite one; a part with none gets straight-line
 /// distances. Counts the vertices bound each way.
-void bind_unreached(const TriangleMesh& avatar, const std::vector<Segment>& segments,
+void bind_unreached(const TriangleMesh& avatar, const std::vector<BoneSegment>& segments,
                     Eigen::MatrixXd& distances, Binding& binding) {
   const Eigen::Index vertex_count = avatar.vertices.rows();
   std::vector<std::vector<std::pair<int, double>>> edges(static_cast<std::size_t>(vertex_count));
@@ -348,7 +347,7 @@ void bind_unreached(const TriangleMesh& avatar, const std::vector<Segment>& segm
 /// plus a voxel, so a vertex on a bone is finite), summed per owner joint, the largest
 /// max_influences joints kept and normalized.
 Eigen::MatrixXd weights_from_distances(const Eigen::MatrixXd& distances,
-                                       const std::vector<Segment>& segments, int joint_count,
+                                       const std::vector<BoneSegment>& segments, int joint_count,
                                        double voxel_size, const BindingOptions& options) {
   const Eigen::Index vertex_count = distances.rows();
   Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(joint_count, vertex_count);
@@ -391,7 +390,7 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
   const Stopwatch stopwatch;
   report_progress(options.progress, "binding", 0.0);
   Binding binding;
-  const std::vector<Segment> segments = skeleton_segments(skeleton, options);
+  const std::vector<BoneSegment> segments = skeleton_segments(skeleton, options);
   binding.segments = static_cast<int>(segments.size());
   const double largest_side =
       (avatar.vertices.colwise().maxCoeff() - avatar.vertices.colwise().minCoeff()).maxCoeff();

@@ -48,6 +48,24 @@ struct BindingOptions {
   ProgressCallback progress;
 };
 
+/// A bone or an end segment of a skeleton (see BindingOptions::end_angle_degrees), in the
+/// skeleton's units.
+struct BoneSegment {
+  Vector3d a, b;  ///< for a bone, a is its joint nearer the root; for an end segment, its joint
+  int owner = 0;  ///< the joint its skin weight goes to: a's joint
+  /// For an end segment, the index (in the same list) of the bone it continues; -1 for a bone.
+  int continues = -1;
+
+  Vector3d closest_point(const Vector3d& p) const;
+  double distance(const Vector3d& p) const { return (closest_point(p) - p).norm(); }
+};
+
+/// The skeleton's bones, each directed away from the root (BindingOptions::root_joint;
+/// joints no bone path joins to it start their own tree at their lowest-numbered joint),
+/// followed by the end segments. Bones joining a joint to itself are left out.
+/// @pre bone indices in range and root_joint a joint (bind_skeleton checks both).
+std::vector<BoneSegment> skeleton_segments(const Skeleton& skeleton, const BindingOptions& options);
+
 /// Automatic skin weights and how they were found.
 struct Binding {
   /// #J×#V, each column non-negative and summing to 1, at most max_influences non-zeros: the

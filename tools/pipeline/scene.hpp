@@ -18,6 +18,7 @@ struct ScenePaths {
   std::string target_skeleton;
   std::string skin_weights;  ///< #joints × #avatar OBJ vertices; needs skeletons
   std::string no_fit;        ///< 0-based garment OBJ vertex ids
+  std::string source_body;   ///< the body the garment was made on, in the garment's frame
 };
 
 /// A scene as read and checked, in the files' own units and frames.
