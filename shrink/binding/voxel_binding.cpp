@@ -343,6 +343,64 @@ void bind_unreached(const TriangleMesh& avatar, const std::vector<BoneSegment>& 
   }
 }
 
+/// Each vertex's largest-weight joint.
+std::vector<int> dominant_joints(const Eigen::MatrixXd& weights) {
+  std::vector<int> dominant(static_cast<std::size_t>(weights.cols()));
+  for (Eigen::Index v = 0; v < weights.cols(); ++v) {
+    Eigen::Index joint = 0;
+    weights.col(v).maxCoeff(&joint);
+    dominant[static_cast<std::size_t>(v)] = static_cast<int>(joint);
+  }
+  return dominant;
+}
+
+/// Vertices in islands: connected regions (over mesh edges) of one dominant joint all of
+/// whose bordering vertices are dominated by joints that are neither theirs nor next to it
+/// in the skeleton. Weights change along the skeleton across the surface, so such a region
+/// was reached through a contact the interior voxels cannot tell apart (a hand resting on a
+/// thigh, whose solids overlap).
+std::vector<char> stray_islands(const TriangleMesh& avatar, const Eigen::MatrixXd& weights,
+                                const Skeleton& skeleton) {
+  const std::vector<int> dominant = dominant_joints(weights);
+  const auto joint_count = static_cast<int>(skeleton.joints.rows());
+  Eigen::MatrixXi adjacent = Eigen::MatrixXi::Identity(joint_count, joint_count);
+  for (Eigen::Index b = 0; b < skeleton.bones.rows(); ++b) {
+    adjacent(skeleton.bones(b, 0), skeleton.bones(b, 1)) = 1;
+    adjacent(skeleton.bones(b, 1), skeleton.bones(b, 0)) = 1;
+  }
+  const std::size_t n = dominant.size();
+  std::vector<std::vector<int>> neighbours(n);
+  for (Eigen::Index f = 0; f < avatar.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = avatar.faces(f, c), b = avatar.faces(f, (c + 1) % 3);
+      neighbours[static_cast<std::size_t>(a)].push_back(b);
+      neighbours[static_cast<std::size_t>(b)].push_back(a);
+    }
+  std::vector<char> island(n, 0);
+  std::vector<int> region_of(n, -1);
+  for (std::size_t start = 0; start < n; ++start) {
+    if (region_of[start] >= 0) continue;
+    const int joint = dominant[start];
+    std::vector<int> members{static_cast<int>(start)};
+    region_of[start] = static_cast<int>(start);
+    bool borders = false, joined = false;
+    for (std::size_t head = 0; head < members.size(); ++head)
+      for (int w : neighbours[static_cast<std::size_t>(members[head])]) {
+        const int other = dominant[static_cast<std::size_t>(w)];
+        if (other != joint) {
+          borders = true;
+          joined |= adjacent(joint, other) != 0;
+        } else if (region_of[static_cast<std::size_t>(w)] < 0) {
+          region_of[static_cast<std::size_t>(w)] = static_cast<int>(start);
+          members.push_back(w);
+        }
+      }
+    if (borders && !joined)
+      for (int v : members) island[static_cast<std::size_t>(v)] = 1;
+  }
+  return island;
+}
+
 /// Weights from distances: the nearest segments within the ratio, d^-falloff (distances
 /// plus a voxel, so a vertex on a bone is finite), summed per owner joint, the largest
 /// max_influences joints kept and normalized.
@@ -403,8 +461,19 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
   Eigen::MatrixXd distances = vertex_segment_distances(avatar, segments, voxels, options.method);
   report_progress(options.progress, "binding", 0.9);
   bind_unreached(avatar, segments, distances, binding);
-  binding.weights = weights_from_distances(
-      distances, segments, static_cast<int>(skeleton.joints.rows()), binding.voxel_size, options);
+  const auto joint_count = static_cast<int>(skeleton.joints.rows());
+  binding.weights =
+      weights_from_distances(distances, segments, joint_count, binding.voxel_size, options);
+  const std::vector<char> islands = stray_islands(avatar, binding.weights, skeleton);
+  binding.vertices_rebound = static_cast<int>(std::count(islands.begin(), islands.end(), 1));
+  if (binding.vertices_rebound > 0) {
+    for (std::size_t v = 0; v < islands.size(); ++v)
+      if (islands[v]) distances.row(static_cast<Eigen::Index>(v)).setConstant(kInfinity);
+    Binding rebinding;
+    bind_unreached(avatar, segments, distances, rebinding);
+    binding.weights =
+        weights_from_distances(distances, segments, joint_count, binding.voxel_size, options);
+  }
   binding.seconds = stopwatch.seconds();
   report_progress(options.progress, "binding", 1.0);
   return binding;

@@ -81,6 +81,10 @@ struct Binding {
   int vertices_through_interior = 0;
   int vertices_through_neighbours = 0;
   int vertices_by_straight_line = 0;
+  /// Vertices of stray islands (regions of one dominant joint bordered only by regions of
+  /// joints neither theirs nor next to it in the skeleton: a hand resting on a thigh reached
+  /// by the thigh's bone), bound again through their mesh neighbours.
+  int vertices_rebound = 0;
   double seconds = 0.0;
 };
 

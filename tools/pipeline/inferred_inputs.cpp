@@ -28,8 +28,7 @@ BindingChoice parse_binding_choice(const std::string& name) {
   for (const BindingChoice choice :
        {BindingChoice::kGeodesic, BindingChoice::kVisible, BindingChoice::kNearest})
     if (name == to_string(choice)) return choice;
-  throw InputError("", 0,
-                   fmt::format("unknown binding '{}' (geodesic, visible or nearest)", name));
+  throw InputError("", 0, fmt::format("unknown binding '{}' (geodesic, visible or nearest)", name));
 }
 
 nlohmann::json to_json(const InferenceReport& r) {
@@ -39,23 +38,23 @@ nlohmann::json to_json(const InferenceReport& r) {
     const BindingOptions& o = r.binding_options;
     skin["method"] = r.binding_method;
     if (r.binding_method != to_string(BindingChoice::kNearest))
-      skin["binding"] = {
-          {"seconds", r.binding.seconds},
-          {"voxel_size", r.binding.voxel_size},
-          {"interior_voxels", r.binding.interior_voxels},
-          {"segments", r.binding.segments},
-          {"vertices_through_interior", r.binding.vertices_through_interior},
-          {"vertices_through_neighbours", r.binding.vertices_through_neighbours},
-          {"vertices_by_straight_line", r.binding.vertices_by_straight_line},
-          {"options",
-           {{"resolution", o.resolution},
-            {"falloff", o.falloff},
-            {"distance_ratio", o.distance_ratio},
-            {"max_influences", o.max_influences},
-            {"root_joint", o.root_joint},
-            {"end_angle_degrees", o.end_angle_degrees},
-            {"end_length", o.end_length}}},
-          {"units", "voxel_size in normalized scene units"}};
+      skin["binding"] = {{"seconds", r.binding.seconds},
+                         {"voxel_size", r.binding.voxel_size},
+                         {"interior_voxels", r.binding.interior_voxels},
+                         {"segments", r.binding.segments},
+                         {"vertices_through_interior", r.binding.vertices_through_interior},
+                         {"vertices_through_neighbours", r.binding.vertices_through_neighbours},
+                         {"vertices_by_straight_line", r.binding.vertices_by_straight_line},
+                         {"vertices_rebound", r.binding.vertices_rebound},
+                         {"options",
+                          {{"resolution", o.resolution},
+                           {"falloff", o.falloff},
+                           {"distance_ratio", o.distance_ratio},
+                           {"max_influences", o.max_influences},
+                           {"root_joint", o.root_joint},
+                           {"end_angle_degrees", o.end_angle_degrees},
+                           {"end_length", o.end_length}}},
+                         {"units", "voxel_size in normalized scene units"}};
   }
   json no_fit = {{"inferred", r.no_fit_inferred}, {"free_faces", r.no_fit_faces}};
   if (r.no_fit_inferred) {
@@ -119,10 +118,9 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
   }
   report.no_fit_inferred = true;
   report.no_fit_options = options.no_fit;
-  report.no_fit =
-      infer_no_fit(garment, body ? &*body : nullptr,
-                   normalized.source_skeleton ? &*normalized.source_skeleton : nullptr,
-                   skirt && normalized.source_skeleton, options.no_fit);
+  report.no_fit = infer_no_fit(garment, body ? &*body : nullptr,
+                               normalized.source_skeleton ? &*normalized.source_skeleton : nullptr,
+                               skirt && normalized.source_skeleton, options.no_fit);
   report.no_fit.snug_offset /= normalized.normalization.garment_to_scene.scale;
   report.no_fit_faces = count_free(report.no_fit.vertices);
 

@@ -102,8 +102,8 @@ std::vector<char> loose_from_body(const TriangleMesh& garment, const TriangleMes
     return kept;
   };
   const double min_size = options.min_region_share * static_cast<double>(n);
-  std::vector<char> free = keep_regions(
-      loose, [&](int size, bool reaches) { return reaches && size >= min_size; });
+  std::vector<char> free =
+      keep_regions(loose, [&](int size, bool reaches) { return reaches && size >= min_size; });
   std::vector<char> fitted(n);
   for (std::size_t v = 0; v < n; ++v) fitted[v] = !free[v];
   const std::vector<char> enclosed =
@@ -146,8 +146,8 @@ std::vector<char> beyond_end_joints(const TriangleMesh& garment, const Skeleton&
       if (segments[s].distance(p) < segments[nearest].distance(p)) nearest = s;
     for (const BoneSegment& end : segments) {
       if (end.continues < 0) continue;
-      const bool near = &segments[nearest] == &end ||
-                        nearest == static_cast<std::size_t>(end.continues);
+      const bool near =
+          &segments[nearest] == &end || nearest == static_cast<std::size_t>(end.continues);
       const BoneSegment& bone = segments[static_cast<std::size_t>(end.continues)];
       const Vector3d along = bone.b - bone.a;
       const double length = along.norm();

@@ -146,7 +146,8 @@ TEST_CASE("binding the shared avatars", "[shrink][binding][shared]") {
   std::cout << name << " " << to_string(options.method) << ": " << binding.seconds << " s, voxel "
             << binding.voxel_size << ", " << binding.interior_voxels << " interior voxels, "
             << binding.vertices_through_interior << "/" << binding.vertices_through_neighbours
-            << "/" << binding.vertices_by_straight_line << " vertices\n";
+            << "/" << binding.vertices_by_straight_line << " vertices, " << binding.vertices_rebound
+            << " rebound\n";
   REQUIRE(binding.vertices_by_straight_line == 0);
   if (options.method == BindingMethod::kGeodesic)
     REQUIRE(binding.vertices_through_interior > 0.95 * avatar.mesh.vertices.rows());

@@ -96,7 +96,8 @@ TEST_CASE("no-fit inference on the shared garments", "[tools][no_fit][shared]") 
   const bool with_body = GENERATE(true, false);
   CAPTURE(name, with_body);
   const std::string dir = "garments/" + name + "/";
-  const SimulationMesh garment = make_simulation_mesh(read_obj(test::shared_data(dir + "garment.obj")));
+  const SimulationMesh garment =
+      make_simulation_mesh(read_obj(test::shared_data(dir + "garment.obj")));
   const TriangleMesh body =
       make_simulation_mesh(read_obj(test::shared_data(dir + "source_body.obj"))).mesh;
   const Skeleton skeleton = read_skeleton(test::shared_data(dir + "skeleton.obj"));
@@ -108,9 +109,9 @@ TEST_CASE("no-fit inference on the shared garments", "[tools][no_fit][shared]") 
   const bool skirt = name == "skirt";
   const NoFitInference inference =
       infer_no_fit(garment.mesh, with_body ? &body : nullptr, &skeleton, skirt);
-  const double iou = no_fit_face_iou(garment.mesh.faces,
-                                     static_cast<int>(garment.mesh.vertices.rows()),
-                                     inference.vertices, hand_made);
+  const double iou =
+      no_fit_face_iou(garment.mesh.faces, static_cast<int>(garment.mesh.vertices.rows()),
+                      inference.vertices, hand_made);
   std::cout << name << (with_body ? " with" : " without") << " source body (" << inference.method
             << "): IoU " << iou << ", " << inference.vertices.size() << " vertices listed ("
             << inference.from_body << " body, " << inference.from_hips << " hips, "
@@ -124,4 +125,3 @@ TEST_CASE("no-fit inference on the shared garments", "[tools][no_fit][shared]") 
   }
   REQUIRE(iou > 0.0);
 }
-
