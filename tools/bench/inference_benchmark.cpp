@@ -32,10 +32,10 @@ struct Pairing {
 /// One way of running a pairing: which inputs are given.
 struct Inputs {
   std::string name;
-  bool weights = false;    ///< the avatar's skin weights, where it has them
-  bool no_fit = false;     ///< the hand-made no-fit list
-  bool body = false;       ///< the source body, for the no-fit inference
-  bool nearest = false;    ///< no weights and no binding: the nearest bone
+  bool weights = false;  ///< the avatar's skin weights, where it has them
+  bool no_fit = false;   ///< the hand-made no-fit list
+  bool body = false;     ///< the source body, for the no-fit inference
+  bool nearest = false;  ///< no weights and no binding: the nearest bone
 };
 
 std::string binding_rows(const std::string& shared) {
@@ -44,15 +44,16 @@ std::string binding_rows(const std::string& shared) {
     const std::string dir = shared + "/avatars/" + avatar + "/";
     const gr::SimulationMesh sim = gr::make_simulation_mesh(gr::read_obj(dir + "avatar.obj"));
     const gr::Skeleton skeleton = gr::read_skeleton(dir + "skeleton.obj");
-    for (const gr::BindingMethod method : {gr::BindingMethod::kGeodesic, gr::BindingMethod::kVisible}) {
+    for (const gr::BindingMethod method :
+         {gr::BindingMethod::kGeodesic, gr::BindingMethod::kVisible}) {
       gr::BindingOptions options;
       options.method = method;
       const gr::Binding binding = gr::bind_skeleton(sim.mesh, skeleton, options);
       std::string agreement = "no weights given";
       if (fs::exists(dir + "skin.txt")) {
-        const Eigen::MatrixXd file = gr::read_skin_weights(
-            dir + "skin.txt", static_cast<int>(skeleton.joints.rows()),
-            static_cast<int>(sim.obj_to_sim.size()));
+        const Eigen::MatrixXd file =
+            gr::read_skin_weights(dir + "skin.txt", static_cast<int>(skeleton.joints.rows()),
+                                  static_cast<int>(sim.obj_to_sim.size()));
         Eigen::MatrixXd given(file.rows(), sim.mesh.vertices.rows());
         for (std::size_t s = 0; s < sim.sim_to_obj.size(); ++s)
           given.col(static_cast<Eigen::Index>(s)) = file.col(sim.sim_to_obj[s]);
@@ -85,8 +86,12 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
   const std::string garment_dir = shared + "/garments/" + pairing.garment + "/";
   const std::string avatar_dir = shared + "/avatars/" + pairing.avatar + "/";
   gr::RetargetOptions options;
-  options.inputs = {garment_dir + "garment.obj", avatar_dir + "avatar.obj",
-                    garment_dir + "skeleton.obj", avatar_dir + "skeleton.obj", "", ""};
+  options.inputs = {garment_dir + "garment.obj",
+                    avatar_dir + "avatar.obj",
+                    garment_dir + "skeleton.obj",
+                    avatar_dir + "skeleton.obj",
+                    "",
+                    ""};
   if (inputs.weights && fs::exists(avatar_dir + "skin.txt"))
     options.inputs.skin_weights = avatar_dir + "skin.txt";
   if (inputs.no_fit) options.inputs.no_fit = garment_dir + "no-fit.txt";
@@ -105,7 +110,8 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
   const gr::Scene scene = gr::load_scene(hand_made);
   const int vertex_count = static_cast<int>(scene.garment.mesh.vertices.rows());
   std::string weights = "given";
-  if (inputs.nearest) weights = "nearest bone";
+  if (inputs.nearest)
+    weights = "nearest bone";
   else if (r.inferred.skin_weights_inferred)
     weights = fmt::format("{} {:.2f} s", r.inferred.binding_method, r.inferred.binding.seconds);
   const std::string list =
@@ -119,7 +125,8 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
     const gr::ObjDocument written = gr::read_obj(result.garment_path);
     gr::TriangleMesh garment{gr::MatrixX3d(vertex_count, 3), scene.garment.mesh.faces};
     for (int s = 0; s < vertex_count; ++s)
-      garment.vertices.row(s) = written.positions.row(scene.garment.sim_to_obj[static_cast<std::size_t>(s)]);
+      garment.vertices.row(s) =
+          written.positions.row(scene.garment.sim_to_obj[static_cast<std::size_t>(s)]);
     std::vector<bool> fit = gr::fit_face_mask(garment.faces, vertex_count, scene.no_fit);
     const gr::FitError on_fit = gr::measure_fit_error(garment, fit, scene.avatar.mesh);
     for (std::size_t f = 0; f < fit.size(); ++f) fit[f] = !fit[f];
@@ -129,8 +136,8 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
                            r.shape.p95_edge_change);
   }
   return fmt::format("| {} | {} | {} | {} | {} {}| {} | {:.1f} |\n", pairing.name, weights, list,
-                     exit_name(result.status), r.certified ? "yes" : "no", measured,
-                     r.fit_faces, r.seconds.total);
+                     exit_name(result.status), r.certified ? "yes" : "no", measured, r.fit_faces,
+                     r.seconds.total);
 }
 
 }  // namespace
@@ -170,7 +177,8 @@ int main(int argc, char** argv) {
     if (!only.empty() && std::find(only.begin(), only.end(), pairing.name) == only.end()) continue;
     for (const Inputs& inputs : ways) {
       // Avatars without weights: "given" is the nearest bone, run once.
-      if (inputs.name == "given" && !fs::exists(shared + "/avatars/" + pairing.avatar + "/skin.txt"))
+      if (inputs.name == "given" &&
+          !fs::exists(shared + "/avatars/" + pairing.avatar + "/skin.txt"))
         continue;
       table += retarget_row(pairing, inputs, shared, out);
       std::fprintf(stderr, "%s", table.substr(table.rfind('\n', table.size() - 2) + 1).c_str());

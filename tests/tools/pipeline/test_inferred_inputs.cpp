@@ -21,16 +21,13 @@ namespace fs = std::filesystem;
 
 TEST_CASE("skeleton shrink of every shared pairing with bound weights is certified",
           "[shrink][skeleton][binding]") {
-  const auto [garment, avatar] = GENERATE(table<std::string, std::string>({{"skirt", "foxgirl"},
-                                                                           {"puffer", "goblin"},
-                                                                           {"skirt", "goblin"},
-                                                                           {"puffer", "foxgirl"}}));
+  const auto [garment, avatar] = GENERATE(table<std::string, std::string>(
+      {{"skirt", "foxgirl"}, {"puffer", "goblin"}, {"skirt", "goblin"}, {"puffer", "foxgirl"}}));
   CAPTURE(garment, avatar);
   const test::NormalizedScene scene = test::load_normalized_scene(garment, avatar);
   const Binding binding = bind_skeleton(scene.avatar, scene.target_skeleton);
-  const ShrinkResult result =
-      shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton, scene.target_skeleton,
-                         binding.weights);
+  const ShrinkResult result = shrink_to_skeleton(scene.avatar, scene.garment, scene.source_skeleton,
+                                                 scene.target_skeleton, binding.weights);
   test::require_certified(scene.avatar, result, scene.garment);
   if (garment == "puffer" && avatar == "goblin") {
     // Without weights the nearest bone sends thigh vertices to a forearm: no shrink is found.
@@ -64,7 +61,8 @@ TEST_CASE("retarget infers the skin weights and the no-fit list it is not given"
   REQUIRE(inferred["no_fit"]["inferred"] == true);
   REQUIRE(inferred["no_fit"]["method"] == "source body distance");
   REQUIRE(inferred["no_fit"]["free_faces"].get<int>() > 0);
-  REQUIRE(report["modelled"]["fit_faces"].get<int>() + inferred["no_fit"]["free_faces"].get<int>() ==
+  REQUIRE(report["modelled"]["fit_faces"].get<int>() +
+              inferred["no_fit"]["free_faces"].get<int>() ==
           report["modelled"]["garment_faces"].get<int>());
 
   // DIR/no-fit.txt is a list the command reads back: 0-based OBJ vertex ids.
