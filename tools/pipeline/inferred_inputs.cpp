@@ -31,6 +31,21 @@ BindingChoice parse_binding_choice(const std::string& name) {
   throw InputError("", 0, fmt::format("unknown binding '{}' (geodesic, visible or nearest)", name));
 }
 
+namespace {
+
+/// The root joint named on the command line must be one of the skeleton's joints.
+void require_root_joint(const InferenceOptions& options, const NormalizedScene& normalized) {
+  if (!normalized.target_skeleton) return;
+  const auto joints = static_cast<int>(normalized.target_skeleton->joints.rows());
+  for (const int root : {options.binding_options.root_joint, options.no_fit.root_joint})
+    if (root < 0 || root >= joints)
+      throw InputError(
+          "", 0,
+          fmt::format("root joint {} is not a joint of the skeletons (0 to {})", root, joints - 1));
+}
+
+}  // namespace
+
 nlohmann::json to_json(const InferenceReport& r) {
   using nlohmann::json;
   json skin = {{"inferred", r.skin_weights_inferred}};
@@ -80,6 +95,7 @@ nlohmann::json to_json(const InferenceReport& r) {
 Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScene& normalized,
                                         const InferenceOptions& options, InferenceReport& report) {
   if (scene.skin_weights.size() != 0 || !normalized.target_skeleton) return scene.skin_weights;
+  require_root_joint(options, normalized);
   report.skin_weights_inferred = true;
   report.binding_method = to_string(options.binding);
   if (options.binding == BindingChoice::kNearest) return {};
@@ -108,6 +124,7 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
     report.no_fit_faces = count_free(scene.no_fit);
     return scene.no_fit;
   }
+  require_root_joint(options, normalized);
   std::optional<TriangleMesh> body;
   if (!source_body_path.empty()) {
     const SimulationMesh read = make_simulation_mesh(read_obj(source_body_path));

@@ -53,6 +53,7 @@ nlohmann::json to_json(const InferenceReport& report);
 /// and a binding other than "nearest") weights bound on the normalized avatar and target
 /// skeleton, recorded in `report`; else empty (nearest bone).
 /// @return #J×#V (welded avatar vertices) or empty.
+/// @throw InputError when the root joint is not a joint of the skeletons.
 Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScene& normalized,
                                         const InferenceOptions& options, InferenceReport& report);
 
@@ -60,7 +61,8 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
 /// (its file named in ScenePaths::no_fit), else inferred (from `source_body_path` when not
 /// empty, an OBJ in the garment's frame) and written to `out_dir`/no-fit.txt as 0-based
 /// garment OBJ vertex ids, recorded in `report`.
-/// @throw InputError when the source body cannot be read; OutputError when the list cannot
+/// @throw InputError when the source body cannot be read or the root joint is not a joint of
+///        the skeletons; OutputError when the list cannot
 ///        be written; InputError from find_leg_joints for a skirt whose skeleton has no legs.
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
                                 bool list_given, const std::string& source_body_path, bool skirt,

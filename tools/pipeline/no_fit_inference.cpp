@@ -172,6 +172,9 @@ NoFitInference infer_no_fit(const TriangleMesh& garment, const TriangleMesh* sou
       !std::isfinite(options.hip_offset) || !std::isfinite(options.end_margin))
     throw std::invalid_argument(
         "infer_no_fit: the percentile must be in [0, 100], edge counts and shares >= 0");
+  if (source_skeleton &&
+      (options.root_joint < 0 || options.root_joint >= source_skeleton->joints.rows()))
+    throw std::invalid_argument("infer_no_fit: the root joint is out of range");
   NoFitInference inference;
   const auto n = static_cast<std::size_t>(garment.vertices.rows());
   std::vector<char> free(n, 0);

@@ -56,8 +56,8 @@ struct NoFitInference {
 ///        joint rule then).
 /// @param skirt apply the skirt rule (needs the skeleton).
 /// @throw std::invalid_argument when an option is out of range (percentile outside
-///        [0, 100], a negative edge count or share); InputError from find_leg_joints when
-///        `skirt` and the skeleton has no legs.
+///        [0, 100], a negative edge count or share, a root joint out of range); InputError from
+///        find_leg_joints when `skirt` and the skeleton has no legs.
 NoFitInference infer_no_fit(const TriangleMesh& garment, const TriangleMesh* source_body,
                             const Skeleton* source_skeleton, bool skirt,
                             const NoFitOptions& options = {});

@@ -71,3 +71,17 @@ TEST_CASE("retarget infers the skin weights and the no-fit list it is not given"
   const std::vector<int> ids = read_vertex_list(list, 1 << 20);
   REQUIRE(ids.size() >= inferred["no_fit"]["vertices"].get<std::size_t>());
 }
+
+TEST_CASE("a root joint outside the skeleton is bad input", "[pipeline][inference]") {
+  const std::string d = test::shared_data("");
+  const fs::path out = test::fresh_temp_dir("inferred_root");
+  const test::CliRun run = test::run_cli(
+      {"retarget", "--garment", d + "/garments/skirt/garment.obj", "--avatar",
+       d + "/avatars/foxgirl/avatar.obj", "--source-skeleton", d + "/garments/skirt/skeleton.obj",
+       "--target-skeleton", d + "/avatars/foxgirl/skeleton.obj", "--root-joint", "15", "--out",
+       out.string(), "--quiet"},
+      "inferred_root");
+  CAPTURE(run.out, run.err);
+  REQUIRE(run.exit_code == 2);
+  REQUIRE_THAT(run.err, Catch::Contains("root joint 15 is not a joint of the skeletons (0 to 14)"));
+}
