@@ -146,10 +146,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Inferred skin weights and no-fit lists against given ones, on the shared scenes."};
   std::string shared = GR_SHARED_DATA_DIR;
   std::string out = "inference_bench";
-  std::vector<std::string> only;
+  std::vector<std::string> only, only_inputs;
   app.add_option("--shared-data", shared, "Folder of the shared scenes");
   app.add_option("--out", out, "Where results go");
   app.add_option("--pairing", only, "Run only these pairings (e.g. goblin_puffer)");
+  app.add_option("--inputs", only_inputs,
+                 "Run only these ways (given, nearest_bone, bound, bound_body, bound_skeleton)");
   CLI11_PARSE(app, argc, argv);
   fs::create_directories(out);
 
@@ -176,6 +178,9 @@ int main(int argc, char** argv) {
   for (const Pairing& pairing : pairings) {
     if (!only.empty() && std::find(only.begin(), only.end(), pairing.name) == only.end()) continue;
     for (const Inputs& inputs : ways) {
+      if (!only_inputs.empty() &&
+          std::find(only_inputs.begin(), only_inputs.end(), inputs.name) == only_inputs.end())
+        continue;
       // Avatars without weights: "given" is the nearest bone, run once.
       if (inputs.name == "given" &&
           !fs::exists(shared + "/avatars/" + pairing.avatar + "/skin.txt"))

@@ -130,8 +130,8 @@ std::vector<char> below_hips(const TriangleMesh& garment, const Skeleton& skelet
   return free;
 }
 
-/// End joint rule: vertices nearest an end segment or the bone it continues, beyond the end
-/// joint less end_margin lengths of that bone.
+/// End joint rule: vertices nearest an end segment, the bone it continues or a bone leaving
+/// the same joint as that bone, beyond the end joint less end_margin lengths of the bone.
 std::vector<char> beyond_end_joints(const TriangleMesh& garment, const Skeleton& skeleton,
                                     const NoFitOptions& options) {
   BindingOptions segment_options;
@@ -146,9 +146,10 @@ std::vector<char> beyond_end_joints(const TriangleMesh& garment, const Skeleton&
       if (segments[s].distance(p) < segments[nearest].distance(p)) nearest = s;
     for (const BoneSegment& end : segments) {
       if (end.continues < 0) continue;
-      const bool near =
-          &segments[nearest] == &end || nearest == static_cast<std::size_t>(end.continues);
       const BoneSegment& bone = segments[static_cast<std::size_t>(end.continues)];
+      const bool near = &segments[nearest] == &end ||
+                        nearest == static_cast<std::size_t>(end.continues) ||
+                        (segments[nearest].continues < 0 && segments[nearest].owner == bone.owner);
       const Vector3d along = bone.b - bone.a;
       const double length = along.norm();
       if (near && length > 0.0 && (p - bone.b).dot(along / length) > -options.end_margin * length)

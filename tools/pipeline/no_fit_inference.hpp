@@ -27,7 +27,8 @@ struct NoFitOptions {
   double hip_offset = 0.05;
   /// End joint rule: free beyond an end joint (the last joint of a limb, or the neck, see
   /// BindingOptions::end_angle_degrees) less this many lengths of its bone, for the
-  /// vertices nearest that bone or the segment beyond it (the collar above the neck).
+  /// vertices nearest that bone, the segment beyond it or another bone leaving the joint it
+  /// leaves (the collar above the neck, where it meets the shoulders).
   /// Applied when there is no source body; negative switches it off.
   double end_margin = 0.1;
   /// Which joint is the skeleton's root, and when a joint ends a chain (see BindingOptions).
