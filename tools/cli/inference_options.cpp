@@ -1,5 +1,3 @@
-#include <map>
-
 #include "tools/cli/commands.hpp"
 #include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/scene.hpp"
@@ -10,15 +8,14 @@ void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptio
   command.add_option("--source-body", inputs.source_body,
                      "The body the garment was made on (OBJ, in the garment's frame): the "
                      "no-fit list is inferred from it when --no-fit is not given");
-  const std::map<std::string, BindingChoice> bindings{{"geodesic", BindingChoice::kGeodesic},
-                                                      {"visible", BindingChoice::kVisible},
-                                                      {"nearest", BindingChoice::kNearest}};
   command
-      .add_option("--binding", options.binding,
-                  "Skin weights when skeletons come without --skin-weights: geodesic (through "
-                  "the avatar's interior voxels), visible (straight lines that stay inside) or "
-                  "nearest (each vertex on its nearest bone)")
-      ->transform(CLI::CheckedTransformer(bindings))
+      .add_option_function<std::string>(
+          "--binding",
+          [&options](const std::string& name) { options.binding = parse_binding_choice(name); },
+          "Skin weights when skeletons come without --skin-weights: geodesic (through "
+          "the avatar's interior voxels), visible (straight lines that stay inside) or "
+          "nearest (each vertex on its nearest bone)")
+      ->check(CLI::IsMember({"geodesic", "visible", "nearest"}))
       ->default_str("geodesic");
   BindingOptions& b = options.binding_options;
   command
