@@ -11,6 +11,7 @@ namespace gr {
 struct BatchJob;
 struct ScenePaths;
 struct ShapeThresholds;
+struct InferenceOptions;
 
 /// The options naming a scene's files: --garment, --avatar, --out (all required), and the
 /// optional --source-skeleton / --target-skeleton pair and --skin-weights.
@@ -19,6 +20,10 @@ void add_scene_options(CLI::App& command, ScenePaths& inputs, std::string& out_d
 /// The shape-check options shared by retarget and validate: --shape-check on|off and one
 /// option per threshold, written into `thresholds` (whose values are the defaults shown).
 void add_shape_check_options(CLI::App& command, ShapeThresholds& thresholds);
+
+/// The options for what retarget infers when it is not given: --source-body, the binding's
+/// and the no-fit inference's knobs, written into `inputs` and `options`.
+void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options);
 
 /// Each subcommand registers itself on the root app; its callback stores the exit code.
 void add_retarget_command(CLI::App& root, int& exit_code);

@@ -31,7 +31,8 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "retarget", "Refit a garment onto an avatar, then certify the written garment.");
   add_scene_options(*cmd, options->inputs, options->out_dir);
   cmd->add_option("--no-fit", options->inputs.no_fit,
-                  "Garment vertex ids (0-based) whose faces hang free instead of fitting");
+                  "Garment vertex ids (0-based) whose faces hang free instead of fitting; "
+                  "inferred when not given (see --source-body)");
   cmd->add_option("--format", options->format,
                   "Written garment format (default: the garment's input format, glb for .glb "
                   "and .gltf)")
@@ -114,6 +115,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "Model garment self-contact also inside regions that provably cannot fold onto\n"
       "themselves during a step (slower; the same guarantee)");
   add_shape_check_options(*cmd, options->shape_thresholds);
+  add_inference_options(*cmd, options->inputs, options->inference);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");

@@ -99,6 +99,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"fit_faces", r.fit_faces},
         {"avatar_faces_total", r.avatar_faces_total},
         {"avatar_faces_modelled", r.avatar_faces_modelled}}},
+      {"inferred", to_json(r.inferred)},
       {"peak_memory_mb", r.peak_memory_mb},
       {"certified", r.certified},
       {"warnings", r.warnings},

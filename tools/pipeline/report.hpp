@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
@@ -75,6 +76,8 @@ struct RetargetReport {
   int avatar_faces_total = 0;
   int avatar_faces_modelled = 0;
   double peak_memory_mb = 0.0;
+
+  InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
 
   bool certified = false;
   std::vector<std::string> warnings;

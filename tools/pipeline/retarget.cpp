@@ -512,13 +512,27 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Inputs in;
   in.scene = read_stage(run);
   in.normalized = normalize_stage(run, in.scene);
+  in.scene.no_fit = no_fit_for_run(in.scene, in.normalized, !options.inputs.no_fit.empty(),
+                                   options.inputs.source_body, options.skirt, options.out_dir,
+                                   options.inference, report.inferred);
+  if (report.inferred.no_fit_inferred)
+    run.progress.log("no-fit", "inferred ({}): {} vertices, {} faces free, written to {}",
+                     report.inferred.no_fit.method, report.inferred.no_fit.vertices.size(),
+                     report.inferred.no_fit_faces, report.inferred.no_fit_path);
 
   const StageTimer shrink_timer;
   const SignedDistanceGrid grid = distance_grid_stage(run, in.normalized.avatar);
   const GridDistanceField distance_field(grid);
   ShrinkResult shrunk;
   try {
-    shrunk = shrink_avatar(report.shrink_mode, in.normalized, in.scene.skin_weights, &grid);
+    const Eigen::MatrixXd skin_weights =
+        report.shrink_mode == ShrinkMode::kSkeleton
+            ? skin_weights_for_shrink(in.scene, in.normalized, options.inference, report.inferred)
+            : in.scene.skin_weights;
+    if (report.inferred.skin_weights_inferred)
+      run.progress.log("shrink", "skin weights inferred: {} binding in {:.2f} s",
+                       report.inferred.binding_method, report.inferred.binding.seconds);
+    shrunk = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid);
   } catch (const NoValidShrinkError& e) {
     const Vector3d where =
         in.normalized.normalization.garment_to_scene.invert(e.conflict().position);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/skinning/skin_weight_transfer.hpp"
+#include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/report.hpp"
 #include "tools/pipeline/scene.hpp"
@@ -20,6 +21,8 @@ struct RetargetOptions {
       shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
   Quality quality = Quality::kBalanced;
   ParameterOverrides overrides;  ///< individual knobs over the preset
+  /// Skin weights and no-fit list inferred when inputs.skin_weights / inputs.no_fit are empty.
+  InferenceOptions inference;
   /// Limits on the written garment's change of shape from the input (report.json `shape`);
   /// beyond them the run ends with RetargetStatus::kShapeChanged.
   ShapeThresholds shape_thresholds;

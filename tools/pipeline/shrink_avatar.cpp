@@ -13,6 +13,7 @@
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "shrink/shrunk_avatar/levelset_shrink.hpp"
 #include "shrink/shrunk_avatar/skeleton_shrink.hpp"
+#include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
 
@@ -127,8 +128,11 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
       report["grid_bytes"] = grid.memory_bytes();
       report["full_depth_grid"] = run.shrink.full_depth_grid;
     } else {
-      run.shrink =
-          shrink_avatar(options.mode, normalized, scene.skin_weights, nullptr, options.progress);
+      InferenceReport inferred;
+      const Eigen::MatrixXd weights =
+          skin_weights_for_shrink(scene, normalized, InferenceOptions{}, inferred);
+      report["inferred"] = to_json(inferred)["skin_weights"];
+      run.shrink = shrink_avatar(options.mode, normalized, weights, nullptr, options.progress);
       report["pullback"] = run.shrink.pullback;
       report["collapsed_vertices"] = run.shrink.collapsed_vertices;
       report["collapse_rounds"] = run.shrink.collapse_rounds;

@@ -63,7 +63,8 @@ struct ShrinkRunResult {
 /// is certified free of the garment, and writes DIR/shrunk_avatar.obj (the avatar's faces,
 /// UVs and materials, positions in the garment's frame and units so it lies over the input
 /// garment) and DIR/report.json (mode, depth, times, medial vertices, or the conflict when
-/// no shrink was found, with its position in the garment's frame).
+/// no shrink was found, with its position in the garment's frame). In skeleton mode without
+/// skin weights the avatar is bound first, with bind_skeleton's defaults (report `inferred`).
 /// @throw InputError for bad inputs (skeleton mode without skeletons, a non-positive voxel
 ///        size), OutputError when out_dir cannot be written.
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options);

@@ -1,0 +1,155 @@
+#include "tools/pipeline/inferred_inputs.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "core/common/errors.hpp"
+#include "core/energies/fit_energy.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/io/obj_document.hpp"
+#include "core/mesh/simulation_mesh.hpp"
+#include "tools/pipeline/normalization.hpp"
+#include "tools/pipeline/scene.hpp"
+
+namespace gr {
+
+const char* to_string(BindingChoice choice) {
+  switch (choice) {
+    case BindingChoice::kGeodesic: return "geodesic";
+    case BindingChoice::kVisible: return "visible";
+    case BindingChoice::kNearest: return "nearest";
+  }
+  return "unknown";
+}
+
+BindingChoice parse_binding_choice(const std::string& name) {
+  for (const BindingChoice choice :
+       {BindingChoice::kGeodesic, BindingChoice::kVisible, BindingChoice::kNearest})
+    if (name == to_string(choice)) return choice;
+  throw InputError("", 0, fmt::format("unknown binding '{}' (geodesic, visible or nearest)", name));
+}
+
+namespace {
+
+/// The root joint named on the command line must be one of the skeleton's joints.
+void require_root_joint(const InferenceOptions& options, const NormalizedScene& normalized) {
+  if (!normalized.target_skeleton) return;
+  const auto joints = static_cast<int>(normalized.target_skeleton->joints.rows());
+  for (const int root : {options.binding_options.root_joint, options.no_fit.root_joint})
+    if (root < 0 || root >= joints)
+      throw InputError(
+          "", 0,
+          fmt::format("root joint {} is not a joint of the skeletons (0 to {})", root, joints - 1));
+}
+
+}  // namespace
+
+nlohmann::json to_json(const InferenceReport& r) {
+  using nlohmann::json;
+  json skin = {{"inferred", r.skin_weights_inferred}};
+  if (r.skin_weights_inferred) {
+    const BindingOptions& o = r.binding_options;
+    skin["method"] = r.binding_method;
+    if (r.binding_method != to_string(BindingChoice::kNearest))
+      skin["binding"] = {{"seconds", r.binding.seconds},
+                         {"voxel_size", r.binding.voxel_size},
+                         {"interior_voxels", r.binding.interior_voxels},
+                         {"segments", r.binding.segments},
+                         {"vertices_through_interior", r.binding.vertices_through_interior},
+                         {"vertices_through_neighbours", r.binding.vertices_through_neighbours},
+                         {"vertices_by_straight_line", r.binding.vertices_by_straight_line},
+                         {"vertices_rebound", r.binding.vertices_rebound},
+                         {"options",
+                          {{"resolution", o.resolution},
+                           {"falloff", o.falloff},
+                           {"distance_ratio", o.distance_ratio},
+                           {"max_influences", o.max_influences},
+                           {"root_joint", o.root_joint},
+                           {"end_angle_degrees", o.end_angle_degrees},
+                           {"end_length", o.end_length}}},
+                         {"units", "voxel_size in normalized scene units"}};
+  }
+  json no_fit = {{"inferred", r.no_fit_inferred}, {"free_faces", r.no_fit_faces}};
+  if (r.no_fit_inferred) {
+    const NoFitOptions& o = r.no_fit_options;
+    no_fit["method"] = r.no_fit.method;
+    no_fit["path"] = r.no_fit_path;
+    no_fit["vertices"] = r.no_fit.vertices.size();
+    no_fit["vertices_by_rule"] = {{"source_body", r.no_fit.from_body},
+                                  {"skirt_hips", r.no_fit.from_hips},
+                                  {"end_joints", r.no_fit.from_end_joints}};
+    no_fit["snug_offset_garment_units"] = r.no_fit.snug_offset;
+    no_fit["options"] = {{"body_distance_edges", o.body_distance_edges},
+                         {"snug_percentile", o.snug_percentile},
+                         {"min_region_share", o.min_region_share},
+                         {"hip_offset", o.hip_offset},
+                         {"end_margin", o.end_margin},
+                         {"root_joint", o.root_joint},
+                         {"end_angle_degrees", o.end_angle_degrees}};
+  }
+  return {{"skin_weights", skin}, {"no_fit", no_fit}};
+}
+
+Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScene& normalized,
+                                        const InferenceOptions& options, InferenceReport& report) {
+  if (scene.skin_weights.size() != 0 || !normalized.target_skeleton) return scene.skin_weights;
+  require_root_joint(options, normalized);
+  report.skin_weights_inferred = true;
+  report.binding_method = to_string(options.binding);
+  if (options.binding == BindingChoice::kNearest) return {};
+  report.binding_options = options.binding_options;
+  report.binding_options.method = options.binding == BindingChoice::kGeodesic
+                                      ? BindingMethod::kGeodesic
+                                      : BindingMethod::kVisible;
+  report.binding =
+      bind_skeleton(normalized.avatar, *normalized.target_skeleton, report.binding_options);
+  Eigen::MatrixXd weights = std::move(report.binding.weights);
+  report.binding.weights.resize(0, 0);  // the report keeps the numbers only
+  return weights;
+}
+
+std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
+                                bool list_given, const std::string& source_body_path, bool skirt,
+                                const std::string& out_dir, const InferenceOptions& options,
+                                InferenceReport& report) {
+  const TriangleMesh& garment = normalized.garment;
+  const auto vertex_count = static_cast<int>(garment.vertices.rows());
+  const auto count_free = [&](const std::vector<int>& list) {
+    const std::vector<bool> fit = fit_face_mask(garment.faces, vertex_count, list);
+    return static_cast<int>(std::count(fit.begin(), fit.end(), false));
+  };
+  if (list_given) {
+    report.no_fit_faces = count_free(scene.no_fit);
+    return scene.no_fit;
+  }
+  require_root_joint(options, normalized);
+  std::optional<TriangleMesh> body;
+  if (!source_body_path.empty()) {
+    const SimulationMesh read = make_simulation_mesh(read_obj(source_body_path));
+    if (read.mesh.faces.rows() == 0)
+      throw InputError(source_body_path, 0, "source body has no (non-degenerate) triangle");
+    body = TriangleMesh{normalized.normalization.garment_to_scene.apply_rows(read.mesh.vertices),
+                        read.mesh.faces};
+  }
+  report.no_fit_inferred = true;
+  report.no_fit_options = options.no_fit;
+  report.no_fit = infer_no_fit(garment, body ? &*body : nullptr,
+                               normalized.source_skeleton ? &*normalized.source_skeleton : nullptr,
+                               skirt && normalized.source_skeleton, options.no_fit);
+  report.no_fit.snug_offset /= normalized.normalization.garment_to_scene.scale;
+  report.no_fit_faces = count_free(report.no_fit.vertices);
+
+  std::vector<char> listed(static_cast<std::size_t>(vertex_count), 0);
+  for (int v : report.no_fit.vertices) listed[static_cast<std::size_t>(v)] = 1;
+  report.no_fit_path = out_dir + "/no-fit.txt";
+  write_file_atomically(report.no_fit_path, [&](std::ostream& out) {
+    const auto& obj_to_sim = scene.garment.obj_to_sim;
+    for (std::size_t p = 0; p < obj_to_sim.size(); ++p)
+      if (obj_to_sim[p] >= 0 && listed[static_cast<std::size_t>(obj_to_sim[p])]) out << p << '\n';
+  });
+  return report.no_fit.vertices;
+}
+
+}  // namespace gr
