@@ -84,10 +84,21 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
   PageGarment garment;
   garment.name = fs::path(scene.garment_document.source_path).filename().string();
   garment.faces = output.faces;
+  MatrixX3d output_vertices = output.vertices;
+  if (output.vertices.rows() != input.vertices.rows() &&
+      output.faces.rows() == input.faces.rows()) {
+    // Another format splits vertices otherwise (an OBJ garment written as GLB): faces keep
+    // their order, so each input vertex takes the written position of its corners.
+    output_vertices = input.vertices;
+    for (Eigen::Index f = 0; f < input.faces.rows(); ++f)
+      for (int k = 0; k < 3; ++k)
+        output_vertices.row(input.faces(f, k)) = output.vertices.row(output.faces(f, k));
+    garment.faces = input.faces;
+  }
   garment.no_fit = no_fit_faces(scene);
   garment.shapes.push_back(shape_of("input", input.vertices, data.avatar, input_crossing));
   garment.shapes.push_back(
-      shape_of("output", output.vertices, data.avatar, marked_faces(checked, 0)));
+      shape_of("output", output_vertices, data.avatar, marked_faces(checked, 0)));
   data.garments.push_back(std::move(garment));
   data.report = to_json(report);
   data.certificate = certificate.json;

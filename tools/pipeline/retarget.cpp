@@ -15,6 +15,7 @@
 #include "core/fit/garment_fit.hpp"
 #include "core/inflation/avatar_inflation.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/skeleton/skin_matching.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "tools/pipeline/contact_scope.hpp"
@@ -62,6 +63,9 @@ struct Run {
 struct Inputs {
   Scene scene;
   NormalizedScene normalized;
+  /// Skin weights bound to the target skeleton when none were given (#J×#avatar welded
+  /// vertices); empty otherwise. The shrink uses them, and a written GLB's skin too.
+  Eigen::MatrixXd bound_skin_weights;
 };
 
 /// Rejects a garment that crosses itself as given (`self`, found on its normalized copy):
@@ -372,7 +376,22 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
   const GltfDocument* source = in.scene.garment_gltf ? &*in.scene.garment_gltf : nullptr;
   if (!source && !in.scene.garment_document.material_libraries.empty())
     run.warn("the OBJ garment's materials are not carried into the GLB (UVs are)");
-  const std::optional<SkinBinding> avatar_skin = avatar_skin_for_export(in.scene);
+  std::optional<SkinBinding> avatar_skin = avatar_skin_for_export(in.scene);
+  const bool bound = !in.scene.avatar_skin && !in.scene.avatar_gltf && in.scene.target_skeleton &&
+                     in.bound_skin_weights.size() != 0;
+  if (bound) {
+    // The binding's weights on the avatar's document positions (unreferenced: joint 0).
+    Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(in.bound_skin_weights.rows(),
+                                                    in.scene.avatar_document.positions.rows());
+    for (Eigen::Index p = 0; p < weights.cols(); ++p) {
+      const int s = in.scene.avatar.obj_to_sim[static_cast<std::size_t>(p)];
+      if (s >= 0)
+        weights.col(p) = in.bound_skin_weights.col(s);
+      else
+        weights(0, p) = 1.0;
+    }
+    avatar_skin = skin_of_skeleton(*in.scene.target_skeleton, weights);
+  }
   if (!avatar_skin) {
     run.warn(
         "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
@@ -380,7 +399,7 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
     write_glb(run.result.garment_path, in.scene.garment_document, source, positions, nullptr);
     return;
   }
-  if (!in.scene.avatar_skin)
+  if (!in.scene.avatar_skin && !bound)
     run.warn(
         "the avatar has no skin weights: the GLB's skin takes the avatar's vertices bound "
         "to their nearest bones");
@@ -529,6 +548,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
         report.shrink_mode == ShrinkMode::kSkeleton
             ? skin_weights_for_shrink(in.scene, in.normalized, options.inference, report.inferred)
             : in.scene.skin_weights;
+    if (report.inferred.skin_weights_inferred) in.bound_skin_weights = skin_weights;
     if (report.inferred.skin_weights_inferred)
       run.progress.log("shrink", "skin weights inferred: {} binding in {:.2f} s",
                        report.inferred.binding_method, report.inferred.binding.seconds);

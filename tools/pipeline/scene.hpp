@@ -23,7 +23,7 @@ struct ScenePaths {
   std::string garment_mesh{};  ///< glTF garment: the mesh (or node) to read; empty: the default
   std::string avatar_mesh{};   ///< glTF avatar: the same
   std::string joint_map{};     ///< glTF skins: source joint name -> target joint name
-  std::string source_body{};  ///< the body the garment was made on, in the garment's frame
+  std::string source_body{};   ///< the body the garment was made on, in the garment's frame
 };
 
 /// A scene as read and checked, in the files' own units and frames.

@@ -8,8 +8,10 @@
 #include "cli_runner.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/io/gltf_fixture.hpp"
+#include "extremes_support.hpp"
 #include "gltf_scene.hpp"
 #include "test_support.hpp"
+#include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 #include "validate/certify/validation.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 #include "validate/checks/self_intersections.hpp"
@@ -247,4 +249,44 @@ TEST_CASE("The validator runner fails on a GLB with errors", "[gltf]") {
 }
 
 }  // namespace
+
+TEST_CASE("An OBJ garment written as GLB is certified, validated and gets its report page",
+          "[gltf]") {
+  // Every face corner has a UV of its own, so the GLB splits every vertex: the report page
+  // maps the written vertices back to the OBJ's through the faces.
+  const auto dir = test::fresh_temp_dir("gltf_obj_to_glb");
+  const SkeletonFreeScene scene = make_skeleton_free_scene(SkeletonFreeFamily::kPatchSphere,
+                                                           {6, 0.0, 0.0, 1.0, Vector3d::Zero()});
+  {
+    std::ofstream obj(dir / "garment.obj");
+    obj.precision(17);
+    for (Eigen::Index v = 0; v < scene.garment.vertices.rows(); ++v)
+      obj << "v " << scene.garment.vertices.row(v) << '\n';
+    for (Eigen::Index c = 0; c < 3 * scene.garment.faces.rows(); ++c)
+      obj << "vt " << (c % 7) / 7.0 << ' ' << (c % 5) / 5.0 << '\n';
+    for (Eigen::Index f = 0; f < scene.garment.faces.rows(); ++f) {
+      obj << 'f';
+      for (int k = 0; k < 3; ++k)
+        obj << ' ' << scene.garment.faces(f, k) + 1 << '/' << 3 * f + k + 1;
+      obj << '\n';
+    }
+  }
+  test::write_mesh_obj(dir / "avatar.obj", scene.avatar);
+  const test::CliRun run =
+      test::run_cli({"retarget", "--garment", (dir / "garment.obj").string(), "--avatar",
+                     (dir / "avatar.obj").string(), "--out", (dir / "run").string(), "--quality",
+                     "fast", "--format", "glb", "--quiet"},
+                    "gltf_obj_to_glb");
+  CAPTURE(run.out, run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK(std::filesystem::exists(dir / "run" / "report.html"));
+  CHECK_FALSE(std::filesystem::exists(dir / "run" / "garment.obj"));
+  const GltfAsset written = read_gltf((dir / "run" / "garment.glb").string());
+  CHECK(written.document.positions.rows() == 3 * scene.garment.faces.rows());
+  const ValidatorRun validator = run_gltf_validator((dir / "run" / "garment.glb").string());
+  INFO(validator.summary.dump());
+  CHECK(validator.exit_code == 0);
+  CHECK(validator.summary["errors"] == 0);
+}
+
 }  // namespace gr
