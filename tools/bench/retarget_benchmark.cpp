@@ -2,6 +2,7 @@
 // eps_tol and voxel size, then writes results.csv, results.md and a plot of time against
 // fit error and against distortion (matplotlib, in a virtual environment made on first use),
 // and results.html: the table and the plot in one page that links each run's report page.
+// It then checks the fit/shape targets of the shared scenes (exit 3 when one is missed).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "core/common/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/obj_document.hpp"
 #include "tools/pipeline/retarget.hpp"
 #include "tools/report_page/benchmark_page.hpp"
 
@@ -174,6 +176,55 @@ int plot(const std::string& project, const fs::path& out) {
   return std::system(run.c_str()) == 0 ? 0 : 1;
 }
 
+/// The fit/shape targets of the shared scenes at the balanced preset: scale-free mean edge
+/// change at most `shape` while the mean fit error stays within `fit` of the avatar's
+/// bounding-box diagonal; and accurate keeps the shape at least as well as balanced.
+struct ShapeTarget {
+  const char* scene;
+  double shape, fit;
+};
+constexpr ShapeTarget kShapeTargets[] = {{"foxgirl_skirt", 0.06, 0.002},
+                                         {"goblin_puffer", 0.13, 0.0025}};
+
+const Run* find_run(const std::vector<Run>& runs, const std::string& scene,
+                    const std::string& config) {
+  for (const Run& run : runs)
+    if (run.scene == scene && run.config == config) return &run;
+  return nullptr;
+}
+
+double avatar_diagonal(const std::string& avatar_path) {
+  const gr::MatrixX3d& p = gr::read_obj(avatar_path).positions;
+  return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
+}
+
+/// Checks kShapeTargets on the runs made; prints one line per check. Returns the failures.
+int check_shape_targets(const std::vector<Run>& runs, const std::vector<BenchScene>& scenes) {
+  int failures = 0;
+  for (const ShapeTarget& target : kShapeTargets) {
+    const Run* balanced = find_run(runs, target.scene, "balanced");
+    if (!balanced) continue;
+    std::string avatar;
+    for (const BenchScene& s : scenes)
+      if (s.name == target.scene) avatar = s.paths.avatar;
+    const auto& b = balanced->result.report;
+    const double fit = b.fit_error.mean / avatar_diagonal(avatar);
+    const bool ok = b.certified && b.shape.mean_edge_change <= target.shape && fit <= target.fit;
+    failures += !ok;
+    std::printf("%s %s balanced: shape %.4f (target <= %.2f), fit/diagonal %.5f (<= %.4f)\n",
+                ok ? "PASS" : "FAIL", target.scene, b.shape.mean_edge_change, target.shape, fit,
+                target.fit);
+    if (const Run* accurate = find_run(runs, target.scene, "accurate")) {
+      const double shape = accurate->result.report.shape.mean_edge_change;
+      const bool kept = shape <= b.shape.mean_edge_change;
+      failures += !kept;
+      std::printf("%s %s accurate: shape %.4f (target <= balanced's %.4f)\n",
+                  kept ? "PASS" : "FAIL", target.scene, shape, b.shape.mean_edge_change);
+    }
+  }
+  return failures;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -199,7 +250,8 @@ int main(int argc, char** argv) {
 
   std::vector<Run> runs;
   fs::create_directories(out);
-  for (const BenchScene& scene : default_scenes(project, shared)) {
+  const std::vector<BenchScene> scenes = default_scenes(project, shared);
+  for (const BenchScene& scene : scenes) {
     if (!only.empty() && std::find(only.begin(), only.end(), scene.name) == only.end()) continue;
     struct Config {
       std::string name, quality;
@@ -253,5 +305,6 @@ int main(int argc, char** argv) {
   write_results_page(out, runs, plotted == 0);
   std::printf("\nresults: %s/results.csv, results.md, results.html%s\n", out.c_str(),
               plotted == 0 ? ", tradeoff.png" : "");
-  return 0;
+  // Exit 3 when a fit/shape target of the shared scenes is missed.
+  return check_shape_targets(runs, scenes) == 0 ? 0 : 3;
 }
