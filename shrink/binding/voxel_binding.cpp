@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/common/stopwatch.hpp"
+#include "shrink/binding/bone_heat.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 
 namespace gr {
@@ -401,6 +402,18 @@ std::vector<char> stray_islands(const TriangleMesh& avatar, const Eigen::MatrixX
   return island;
 }
 
+/// Keeps a column's largest `max_influences` entries (ties: the lower joint) and normalizes
+/// them to sum 1. @pre the column has a positive entry.
+void keep_largest(Eigen::Ref<Eigen::VectorXd> column, int max_influences) {
+  const auto joint_count = static_cast<int>(column.size());
+  std::vector<int> order(static_cast<std::size_t>(joint_count));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return column[a] > column[b]; });
+  for (int k = std::min(max_influences, joint_count); k < joint_count; ++k)
+    column[order[static_cast<std::size_t>(k)]] = 0.0;
+  column /= column.sum();
+}
+
 /// Weights from distances: the nearest segments within the ratio, d^-falloff (distances
 /// plus a voxel, so a vertex on a bone is finite), summed per owner joint, the largest
 /// max_influences joints kept and normalized.
@@ -411,24 +424,30 @@ Eigen::MatrixXd weights_from_distances(const Eigen::MatrixXd& distances,
   Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(joint_count, vertex_count);
   tbb::parallel_for(Eigen::Index(0), vertex_count, [&](Eigen::Index v) {
     const double nearest = distances.row(v).minCoeff() + voxel_size;
-    Eigen::VectorXd joint_weight = Eigen::VectorXd::Zero(joint_count);
     for (std::size_t s = 0; s < segments.size(); ++s) {
       const double d = distances(v, static_cast<Eigen::Index>(s)) + voxel_size;
       if (d > options.distance_ratio * nearest) continue;
-      joint_weight[segments[s].owner] += std::pow(nearest / d, options.falloff);
+      weights(segments[s].owner, v) += std::pow(nearest / d, options.falloff);
     }
-    std::vector<int> order(static_cast<std::size_t>(joint_count));
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int a, int b) { return joint_weight[a] > joint_weight[b]; });
-    double total = 0.0;
-    for (int k = 0; k < std::min(options.max_influences, joint_count); ++k)
-      total += joint_weight[order[static_cast<std::size_t>(k)]];
-    for (int k = 0; k < std::min(options.max_influences, joint_count); ++k) {
-      const int j = order[static_cast<std::size_t>(k)];
-      weights(j, v) = joint_weight[j] / total;
-    }
+    keep_largest(weights.col(v), options.max_influences);
   });
+  return weights;
+}
+
+/// kHeat's weights: bone heat from the visible distances; vertices left unheated (parts
+/// where no vertex sees a bone) take the power falloff over `fallback` distances.
+Eigen::MatrixXd heat_weights(const TriangleMesh& avatar, const std::vector<BoneSegment>& segments,
+                             const Eigen::MatrixXd& visible, const Eigen::MatrixXd& fallback,
+                             int joint_count, double voxel_size, const BindingOptions& options) {
+  Eigen::MatrixXd weights = bone_heat(avatar, segments, visible, joint_count, voxel_size);
+  const Eigen::MatrixXd falloff =
+      weights_from_distances(fallback, segments, joint_count, voxel_size, options);
+  for (Eigen::Index v = 0; v < weights.cols(); ++v) {
+    if (weights.col(v).sum() > 0.0)
+      keep_largest(weights.col(v), options.max_influences);
+    else
+      weights.col(v) = falloff.col(v);
+  }
   return weights;
 }
 
@@ -438,6 +457,7 @@ const char* to_string(BindingMethod method) {
   switch (method) {
     case BindingMethod::kGeodesic: return "geodesic";
     case BindingMethod::kVisible: return "visible";
+    case BindingMethod::kHeat: return "heat";
   }
   return "unknown";
 }
@@ -458,10 +478,20 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
   const InteriorVoxels voxels(avatar, binding.voxel_size, options.progress);
   binding.interior_voxels = voxels.count();
   report_progress(options.progress, "binding", 0.3);
-  Eigen::MatrixXd distances = vertex_segment_distances(avatar, segments, voxels, options.method);
+  const bool heat = options.method == BindingMethod::kHeat;
+  Eigen::MatrixXd distances = vertex_segment_distances(
+      avatar, segments, voxels, heat ? BindingMethod::kVisible : options.method);
   report_progress(options.progress, "binding", 0.9);
+  const Eigen::MatrixXd visible = heat ? distances : Eigen::MatrixXd();
   bind_unreached(avatar, segments, distances, binding);
   const auto joint_count = static_cast<int>(skeleton.joints.rows());
+  if (heat) {
+    binding.weights = heat_weights(avatar, segments, visible, distances, joint_count,
+                                   binding.voxel_size, options);
+    binding.seconds = stopwatch.seconds();
+    report_progress(options.progress, "binding", 1.0);
+    return binding;
+  }
   binding.weights =
       weights_from_distances(distances, segments, joint_count, binding.voxel_size, options);
   const std::vector<char> islands = stray_islands(avatar, binding.weights, skeleton);

@@ -16,9 +16,13 @@ enum class BindingMethod {
   /// Straight-line distance to each bone whose closest point the vertex sees through the
   /// interior (the segment between them stays inside), the others left out.
   kVisible,
+  /// Bone heat diffusion over the surface (Baran and Popović 2007, see bone_heat): each
+  /// vertex is heated by its nearest visible bone (as kVisible sees them) and the heat of
+  /// each bone spreads along the mesh by the cotangent Laplacian.
+  kHeat,
 };
 
-/// "geodesic" or "visible".
+/// "geodesic", "visible" or "heat".
 const char* to_string(BindingMethod method);
 
 /// How automatic skin weights are computed.
@@ -77,13 +81,14 @@ struct Binding {
   /// Vertices bound through interior voxels near them, through their mesh neighbours (a thin
   /// or open part with no interior voxel within two voxels: the weights of the nearest bound
   /// vertex of the same connected part, along its edges), and by straight-line distance (a
-  /// part with no bound vertex at all).
+  /// part with no bound vertex at all). For kHeat: vertices that see a bone, vertices heated
+  /// through the surface alone, and vertices of parts where no vertex sees a bone.
   int vertices_through_interior = 0;
   int vertices_through_neighbours = 0;
   int vertices_by_straight_line = 0;
   /// Vertices of stray islands (regions of one dominant joint bordered only by regions of
   /// joints neither theirs nor next to it in the skeleton: a hand resting on a thigh reached
-  /// by the thigh's bone), bound again through their mesh neighbours.
+  /// by the thigh's bone), bound again through their mesh neighbours (not for kHeat).
   int vertices_rebound = 0;
   double seconds = 0.0;
 };
@@ -93,7 +98,10 @@ struct Binding {
 /// get a solid that does not leak), each bone (and end segment, see BindingOptions) is
 /// rasterized into the interior voxels nearest it, and each vertex is weighted by its
 /// distance to the bones (BindingOptions::method) with a power falloff over the nearest
-/// ones. Deterministic: the same inputs give the same weights with any thread count.
+/// ones; kHeat instead diffuses each bone's heat over the surface (bone_heat), falling
+/// back to the power falloff for parts where no vertex sees a bone. The largest
+/// max_influences joints are kept. Deterministic: the same inputs give the same weights with
+/// any thread count.
 /// @param avatar #V×3 / #F×3, any units; faces need a consistent orientation per part.
 /// @param skeleton joints (#J×3) in the avatar's frame and units; bones (#B×2) into them.
 /// @return weights #J×#V as a skin-weights file holds them.
@@ -101,6 +109,7 @@ struct Binding {
 ///        skeleton has no bone or a bone index out of range, the root joint is out of range,
 ///        or an option is out of its range (resolution < 8, falloff <= 0, ratio < 1,
 ///        influences < 1, end length < 0).
+/// @throw std::runtime_error when the heat system cannot be factored (kHeat).
 /// @throw OperationCancelled when options.progress returns false.
 Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
                       const BindingOptions& options = {});

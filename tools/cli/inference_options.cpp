@@ -13,9 +13,9 @@ void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptio
           "--binding",
           [&options](const std::string& name) { options.binding = parse_binding_choice(name); },
           "Skin weights when skeletons come without --skin-weights: geodesic (through "
-          "the avatar's interior voxels), visible (straight lines that stay inside) or "
-          "nearest (each vertex on its nearest bone)")
-      ->check(CLI::IsMember({"geodesic", "visible", "nearest"}))
+          "the avatar's interior voxels), visible (straight lines that stay inside), heat "
+          "(bone heat diffusion over the surface) or nearest (each vertex on its nearest bone)")
+      ->check(CLI::IsMember({"geodesic", "visible", "heat", "nearest"}))
       ->default_str("geodesic");
   BindingOptions& b = options.binding_options;
   command

@@ -19,16 +19,18 @@ const char* to_string(BindingChoice choice) {
   switch (choice) {
     case BindingChoice::kGeodesic: return "geodesic";
     case BindingChoice::kVisible: return "visible";
+    case BindingChoice::kHeat: return "heat";
     case BindingChoice::kNearest: return "nearest";
   }
   return "unknown";
 }
 
 BindingChoice parse_binding_choice(const std::string& name) {
-  for (const BindingChoice choice :
-       {BindingChoice::kGeodesic, BindingChoice::kVisible, BindingChoice::kNearest})
+  for (const BindingChoice choice : {BindingChoice::kGeodesic, BindingChoice::kVisible,
+                                     BindingChoice::kHeat, BindingChoice::kNearest})
     if (name == to_string(choice)) return choice;
-  throw InputError("", 0, fmt::format("unknown binding '{}' (geodesic, visible or nearest)", name));
+  throw InputError("", 0,
+                   fmt::format("unknown binding '{}' (geodesic, visible, heat or nearest)", name));
 }
 
 namespace {
@@ -100,9 +102,10 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
   report.binding_method = to_string(options.binding);
   if (options.binding == BindingChoice::kNearest) return {};
   report.binding_options = options.binding_options;
-  report.binding_options.method = options.binding == BindingChoice::kGeodesic
-                                      ? BindingMethod::kGeodesic
-                                      : BindingMethod::kVisible;
+  report.binding_options.method =
+      options.binding == BindingChoice::kGeodesic  ? BindingMethod::kGeodesic
+      : options.binding == BindingChoice::kVisible ? BindingMethod::kVisible
+                                                   : BindingMethod::kHeat;
   report.binding =
       bind_skeleton(normalized.avatar, *normalized.target_skeleton, report.binding_options);
   Eigen::MatrixXd weights = std::move(report.binding.weights);

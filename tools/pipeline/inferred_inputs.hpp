@@ -17,10 +17,11 @@ struct NormalizedScene;
 enum class BindingChoice {
   kGeodesic,  ///< bind_skeleton, geodesic through the interior (the default)
   kVisible,   ///< bind_skeleton, straight lines that stay inside
+  kHeat,      ///< bind_skeleton, bone heat diffusion over the surface
   kNearest,   ///< no weights: the skeleton shrink takes each vertex's nearest bone
 };
 
-/// "geodesic", "visible" or "nearest".
+/// "geodesic", "visible", "heat" or "nearest".
 const char* to_string(BindingChoice choice);
 /// @throw InputError for any other name.
 BindingChoice parse_binding_choice(const std::string& name);
@@ -36,7 +37,7 @@ struct InferenceOptions {
 struct InferenceReport {
   /// Skin weights: whether they were computed, and the binding's numbers when they were.
   bool skin_weights_inferred = false;
-  std::string binding_method;  ///< "geodesic", "visible" or "nearest"
+  std::string binding_method;  ///< "geodesic", "visible", "heat" or "nearest"
   Binding binding;             ///< weights left out of the report
   BindingOptions binding_options;
   /// No-fit list: whether it was inferred, the rules and counts, where it was written.
