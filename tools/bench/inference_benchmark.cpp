@@ -17,6 +17,7 @@
 #include "core/io/obj_document.hpp"
 #include "core/mesh/simulation_mesh.hpp"
 #include "shrink/binding/voxel_binding.hpp"
+#include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/retarget.hpp"
 
@@ -35,7 +36,8 @@ struct Inputs {
   bool weights = false;  ///< the avatar's skin weights, where it has them
   bool no_fit = false;   ///< the hand-made no-fit list
   bool body = false;     ///< the source body, for the no-fit inference
-  bool nearest = false;  ///< no weights and no binding: the nearest bone
+  /// How weights are bound when not given (kNearest: no weights, the nearest bone).
+  gr::BindingChoice binding = gr::BindingChoice::kGeodesic;
 };
 
 std::string binding_rows(const std::string& shared) {
@@ -45,7 +47,7 @@ std::string binding_rows(const std::string& shared) {
     const gr::SimulationMesh sim = gr::make_simulation_mesh(gr::read_obj(dir + "avatar.obj"));
     const gr::Skeleton skeleton = gr::read_skeleton(dir + "skeleton.obj");
     for (const gr::BindingMethod method :
-         {gr::BindingMethod::kGeodesic, gr::BindingMethod::kVisible}) {
+         {gr::BindingMethod::kGeodesic, gr::BindingMethod::kVisible, gr::BindingMethod::kHeat}) {
       gr::BindingOptions options;
       options.method = method;
       const gr::Binding binding = gr::bind_skeleton(sim.mesh, skeleton, options);
@@ -96,7 +98,7 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
     options.inputs.skin_weights = avatar_dir + "skin.txt";
   if (inputs.no_fit) options.inputs.no_fit = garment_dir + "no-fit.txt";
   if (inputs.body) options.inputs.source_body = garment_dir + "source_body.obj";
-  if (inputs.nearest) options.inference.binding = gr::BindingChoice::kNearest;
+  options.inference.binding = inputs.binding;
   options.skirt = pairing.skirt;
   options.out_dir = out + "/" + pairing.name + "_" + inputs.name;
   options.quiet = true;
@@ -110,7 +112,7 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
   const gr::Scene scene = gr::load_scene(hand_made);
   const int vertex_count = static_cast<int>(scene.garment.mesh.vertices.rows());
   std::string weights = "given";
-  if (inputs.nearest)
+  if (inputs.binding == gr::BindingChoice::kNearest)
     weights = "nearest bone";
   else if (r.inferred.skin_weights_inferred)
     weights = fmt::format("{} {:.2f} s", r.inferred.binding_method, r.inferred.binding.seconds);
@@ -151,7 +153,8 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "Where results go");
   app.add_option("--pairing", only, "Run only these pairings (e.g. goblin_puffer)");
   app.add_option("--inputs", only_inputs,
-                 "Run only these ways (given, nearest_bone, bound, bound_body, bound_skeleton)");
+                 "Run only these ways (given, nearest_bone, bound, bound_heat, bound_body, "
+                 "bound_skeleton)");
   CLI11_PARSE(app, argc, argv);
   fs::create_directories(out);
 
@@ -159,11 +162,13 @@ int main(int argc, char** argv) {
                                          {"goblin_puffer", "puffer", "goblin", false},
                                          {"goblin_skirt", "skirt", "goblin", true},
                                          {"foxgirl_puffer", "puffer", "foxgirl", false}};
-  const std::vector<Inputs> ways = {{"given", true, true, false, false},
-                                    {"nearest_bone", false, true, false, true},
-                                    {"bound", false, true, false, false},
-                                    {"bound_body", false, false, true, false},
-                                    {"bound_skeleton", false, false, false, false}};
+  const std::vector<Inputs> ways = {
+      {"given", true, true, false},
+      {"nearest_bone", false, true, false, gr::BindingChoice::kNearest},
+      {"bound", false, true, false},
+      {"bound_heat", false, true, false, gr::BindingChoice::kHeat},
+      {"bound_body", false, false, true},
+      {"bound_skeleton", false, false, false}};
   std::string table =
       "Binding (balanced defaults; agreement with the given weights: mean 1 - L1/2 / share of "
       "matching dominant joints; vertices bound through the interior / their neighbours / "
