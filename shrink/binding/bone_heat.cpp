@@ -78,8 +78,7 @@ Eigen::MatrixXd bone_heat(const TriangleMesh& avatar, const std::vector<BoneSegm
   const Eigen::Index n = avatar.vertices.rows();
   if (visible.rows() != n || visible.cols() != static_cast<Eigen::Index>(segments.size()) ||
       !(min_distance > 0.0) || !(strength > 0.0))
-    throw std::invalid_argument(
-        "bone_heat: visible must be #V×#S, min_distance and strength > 0");
+    throw std::invalid_argument("bone_heat: visible must be #V×#S, min_distance and strength > 0");
   Eigen::VectorXd area;
   const Eigen::SparseMatrix<double> weights = cotangent_weights(avatar, area);
   // A vertex whose triangles are all degenerate still gets a little area to be heated by.
@@ -96,7 +95,8 @@ Eigen::MatrixXd bone_heat(const TriangleMesh& avatar, const std::vector<BoneSegm
     const double tie = nearest * (1.0 + kTieTolerance);
     const auto ties = static_cast<double>((visible.row(v).array() <= tie).count());
     for (std::size_t s = 0; s < segments.size(); ++s)
-      if (visible(v, static_cast<Eigen::Index>(s)) <= tie) rhs(v, segments[s].owner) += heat[v] / ties;
+      if (visible(v, static_cast<Eigen::Index>(s)) <= tie)
+        rhs(v, segments[s].owner) += heat[v] / ties;
   }
 
   // Parts where no vertex sees a segment would be singular: pinned to 0 (identity rows).
@@ -122,7 +122,8 @@ Eigen::MatrixXd bone_heat(const TriangleMesh& avatar, const std::vector<BoneSegm
     throw std::runtime_error("bone_heat: the heat system is not positive definite");
   Eigen::MatrixXd result = Eigen::MatrixXd::Zero(joint_count, n);
   for (int j = 0; j < joint_count; ++j)
-    if (rhs.col(j).maxCoeff() > 0.0) result.row(j) = solver.solve(rhs.col(j)).cwiseMax(0.0).transpose();
+    if (rhs.col(j).maxCoeff() > 0.0)
+      result.row(j) = solver.solve(rhs.col(j)).cwiseMax(0.0).transpose();
   return result;
 }
 
