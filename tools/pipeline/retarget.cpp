@@ -330,6 +330,22 @@ FitResult fit_stage(Run& run, SolverScene& solver, const MatrixX3d& inflated) {
   return fit;
 }
 
+/// Weights per welded vertex (#J×#welded) carried to a mesh's document positions (#J×#P)
+/// through `obj_to_sim`; positions no face references follow joint 0.
+Eigen::MatrixXd on_document_positions(const Eigen::MatrixXd& welded,
+                                      const std::vector<int>& obj_to_sim) {
+  Eigen::MatrixXd weights =
+      Eigen::MatrixXd::Zero(welded.rows(), static_cast<Eigen::Index>(obj_to_sim.size()));
+  for (Eigen::Index p = 0; p < weights.cols(); ++p) {
+    const int s = obj_to_sim[static_cast<std::size_t>(p)];
+    if (s >= 0)
+      weights.col(p) = welded.col(s);
+    else
+      weights(0, p) = 1.0;
+  }
+  return weights;
+}
+
 /// The avatar's skin carried to the garment's document positions (#J×#P), by transfer
 /// onto the written garment (welded, avatar units); unreferenced positions follow joint 0.
 Eigen::MatrixXd garment_skin_weights(Run& run, const Inputs& in, const SkinBinding& skin,
@@ -353,16 +369,7 @@ Eigen::MatrixXd garment_skin_weights(Run& run, const Inputs& in, const SkinBindi
                    "{} of {} garment vertices took the avatar's weights directly, {} "
                    "inpainted ({:.2f} s)",
                    transfer.matched, written.vertices.rows(), transfer.inpainted, transfer.seconds);
-  Eigen::MatrixXd weights =
-      Eigen::MatrixXd::Zero(skin.weights.rows(), scene.garment_document.positions.rows());
-  for (Eigen::Index p = 0; p < weights.cols(); ++p) {
-    const int s = scene.garment.obj_to_sim[static_cast<std::size_t>(p)];
-    if (s >= 0)
-      weights.col(p) = transfer.weights.row(s).transpose();
-    else
-      weights(0, p) = 1.0;
-  }
-  return weights;
+  return on_document_positions(transfer.weights.transpose(), scene.garment.obj_to_sim);
 }
 
 /// Writes the garment (normalized #Vg×3) as a GLB in the avatar's frame and units, skinned
@@ -379,19 +386,10 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
   std::optional<SkinBinding> avatar_skin = avatar_skin_for_export(in.scene);
   const bool bound = !in.scene.avatar_skin && !in.scene.avatar_gltf && in.scene.target_skeleton &&
                      in.bound_skin_weights.size() != 0;
-  if (bound) {
-    // The binding's weights on the avatar's document positions (unreferenced: joint 0).
-    Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(in.bound_skin_weights.rows(),
-                                                    in.scene.avatar_document.positions.rows());
-    for (Eigen::Index p = 0; p < weights.cols(); ++p) {
-      const int s = in.scene.avatar.obj_to_sim[static_cast<std::size_t>(p)];
-      if (s >= 0)
-        weights.col(p) = in.bound_skin_weights.col(s);
-      else
-        weights(0, p) = 1.0;
-    }
-    avatar_skin = skin_of_skeleton(*in.scene.target_skeleton, weights);
-  }
+  if (bound)
+    avatar_skin =
+        skin_of_skeleton(*in.scene.target_skeleton,
+                         on_document_positions(in.bound_skin_weights, in.scene.avatar.obj_to_sim));
   if (!avatar_skin) {
     run.warn(
         "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
