@@ -208,6 +208,11 @@ bool GarmentProblem::is_valid_snapping(const Eigen::VectorXd& x) {
   return step >= 1.0;
 }
 
+bool GarmentProblem::goal_reached(const Eigen::VectorXd& x) {
+  if (!layout_.t_free) return false;
+  return 1.0 - layout_.t(x) <= snap_window() && is_valid_snapping(x);
+}
+
 double GarmentProblem::minimum_distance(const Eigen::VectorXd& x) {
   contact_->update_candidates(layout_.garment(x), layout_.t(x));
   return contact_->minimum_distance(layout_.garment(x), layout_.t(x));

@@ -28,6 +28,9 @@ class Problem {
   virtual double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) { return 1.0; }
   /// Whether a trial point may be accepted (besides decreasing the objective).
   virtual bool is_valid(const Eigen::VectorXd& x) { return true; }
+  /// Whether x already serves the purpose of the solve, so that it may end short of the
+  /// optimum. Asked at the start point and at each accepted point.
+  virtual bool goal_reached(const Eigen::VectorXd& x) { return false; }
   /// How far a step dx moves things, in the problem's length unit: the solver's step
   /// tolerance is compared against it. Default: the largest coordinate change.
   virtual double step_length(const Eigen::VectorXd& dx) const {

@@ -20,6 +20,7 @@ const char* to_string(SolverStatus status) {
     case SolverStatus::kIterationLimit: return "iteration limit";
     case SolverStatus::kNoDescent: return "no descent";
     case SolverStatus::kNonFiniteEnergy: return "non-finite energy";
+    case SolverStatus::kGoalReached: return "goal reached";
   }
   return "unknown";
 }
@@ -98,6 +99,9 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
   std::deque<double> recent_energies{energy};
   const double start_energy = energy;
   for (;;) {
+    if (problem.goal_reached(x))
+      return finish(SolverStatus::kGoalReached,
+                    fmt::format("the problem's goal is met after {} steps", result.iterations));
     problem.gradient(x, g);
     result.gradient_norm = g.norm();
     if (!g.allFinite())

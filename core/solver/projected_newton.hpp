@@ -15,6 +15,7 @@ enum class SolverStatus {
   kIterationLimit,  ///< max_iterations accepted steps without converging
   kNoDescent,       ///< no step along the search direction lowered the energy (or CCD allowed none)
   kNonFiniteEnergy,  ///< the energy or gradient at the current point is not finite
+  kGoalReached,      ///< the problem's goal is met (Problem::goal_reached) before the tolerances
 };
 
 const char* to_string(SolverStatus status);

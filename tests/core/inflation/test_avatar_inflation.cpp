@@ -101,3 +101,30 @@ TEST_CASE("avatar inflation: a round that leaves t < 0 (eta < 0) resets and reco
   CHECK(result.t == 1.0);
   CHECK(min_outside_distance(scene.avatar, result.garment) > 0.0);
 }
+
+TEST_CASE("garment problem: the inflation's goal is a valid snap near t = 1, the fit has none",
+          "[inflation]") {
+  const GarmentScene scene = test::inflating_sphere_scene();
+  RetargetParameters parameters;
+  GarmentProblem inflation(scene, parameters, GarmentProblem::Stage::kInflation);
+  const DofLayout& layout = inflation.layout();
+  Eigen::VectorXd x = layout.pack(0.0, scene.garment.vertices);
+  // At t = 0 snapping would carry the avatar through the garment, and t is far from 1.
+  CHECK_FALSE(inflation.goal_reached(x));
+  const InflationResult inflated = inflate_avatar(scene, parameters);
+  REQUIRE(inflated.status == InflationStatus::kSnapped);
+  const double window = inflation.snap_window();
+  REQUIRE(window > 0.0);
+  x = layout.pack(1.0 - 0.5 * window, inflated.garment);
+  CHECK(inflation.goal_reached(x));
+  // Out of the window, even where snapping is valid.
+  x = layout.pack(1.0 - 2.0 * window, inflated.garment);
+  CHECK(inflation.is_valid_snapping(x));
+  CHECK_FALSE(inflation.goal_reached(x));
+
+  const test::SphereField field(Vector3d::Zero(), 1.0);
+  GarmentScene fit_scene = scene;
+  fit_scene.distance_field = &field;
+  GarmentProblem fit(fit_scene, parameters, GarmentProblem::Stage::kFit);
+  CHECK_FALSE(fit.goal_reached(fit.layout().pack(1.0, inflated.garment)));
+}

@@ -115,6 +115,49 @@ TEST_CASE("projected Newton: Rosenbrock pairs with PSD projection", "[solver][ne
   CHECK(result.iterations < 100);
 }
 
+/// Rosenbrock pairs whose goal is met once every x is within `reach` of the minimizer's 1.
+class RosenbrockWithGoal : public RosenbrockProblem {
+ public:
+  RosenbrockWithGoal(int pairs, double reach) : RosenbrockProblem(pairs), reach_(reach) {}
+  bool goal_reached(const Eigen::VectorXd& z) override {
+    ++goal_checks;
+    for (Eigen::Index i = 0; i < z.size(); i += 2)
+      if (std::abs(z[i] - 1.0) > reach_) return false;
+    return true;
+  }
+  int goal_checks = 0;
+
+ private:
+  double reach_;
+};
+
+TEST_CASE("projected Newton: ends where the problem's goal is met", "[solver][newton]") {
+  Eigen::VectorXd start(2);
+  start << -1.2, 1.0;
+  Eigen::VectorXd x = start;
+  RosenbrockProblem plain(1);
+  const NewtonResult full = ProjectedNewton().minimize(plain, x);
+  REQUIRE(full.status == SolverStatus::kConverged);
+
+  x = start;
+  RosenbrockWithGoal problem(1, 0.1);
+  const NewtonResult result = ProjectedNewton().minimize(problem, x);
+  CHECK(result.status == SolverStatus::kGoalReached);
+  CHECK(std::abs(x[0] - 1.0) <= 0.1);
+  CHECK(result.iterations < full.iterations);
+  // Asked at the start point and after each accepted step, the last time with success.
+  CHECK(problem.goal_checks == result.iterations + 1);
+  CHECK(result.energy == problem.value(x));
+
+  SECTION("a start point that already meets it takes no step") {
+    const Eigen::VectorXd met = x;
+    const NewtonResult again = ProjectedNewton().minimize(problem, x);
+    CHECK(again.status == SolverStatus::kGoalReached);
+    CHECK(again.iterations == 0);
+    CHECK(x == met);
+  }
+}
+
 TEST_CASE("projected Newton: reports the iteration cap", "[solver][newton]") {
   RosenbrockProblem problem(1);
   Eigen::VectorXd x(2);
