@@ -52,9 +52,9 @@ struct NewtonOptions {
   // the system is positive definite by construction whatever H's null space (rigid motions
   // of a free garment, sliding along the body): the step is a continuous function of the
   // inputs instead of whatever rounding makes of a singular factorization. mu adapts to
-  // the ratio rho of the energy's actual to predicted decrease (Nielsen's rule): it falls
-  // towards min_damping while the quadratic model predicts well, and grows where it does
-  // not (a step the line search had to cut counts as a failed prediction).
+  // the ratio rho of the energy's actual to predicted decrease over the step taken (after
+  // CCD and the line search; Nielsen's rule): it falls towards min_damping while the
+  // quadratic model predicts well, and grows where it does not.
   double initial_damping = 1e-6;
   /// The floor of mu: the relative perturbation of H that every step keeps. At 1e-8 the
   /// scaled system's condition number stays below about 1e10 (a few dozen nonzeros per row
