@@ -379,7 +379,12 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       if (gltf.skin) {
         const auto column =
             static_cast<Eigen::Index>(part.first_position) + static_cast<Eigen::Index>(v);
-        const double total = gltf.skin->weights.col(column).sum();
+        // Summed in joint order: a vectorized sum's order depends on where the column
+        // starts in memory, so two copies of a seam vertex (same position, same weights)
+        // would land a rounding apart, and the certificate would see the seam open.
+        double total = 0.0;
+        for (std::size_t j = 0; j < gltf.skin->joints.size(); ++j)
+          total += gltf.skin->weights(static_cast<Eigen::Index>(j), column);
         if (total > 0.0) {
           to_world.setZero();
           for (std::size_t j = 0; j < gltf.skin->joints.size(); ++j)

@@ -369,5 +369,53 @@ TEST_CASE("A skinned mesh sits where its joints put it", "[io][gltf]") {
   }
 }
 
+TEST_CASE("Copies of a skinned vertex stay exactly together when read", "[io][gltf]") {
+  // A seam: corners 0 and 1 of a strip share their position and their weights, and so
+  // must read back as the same point to the bit, posed or not; an exact certificate sees
+  // a seam opened by one rounding as two faces crossing. 15 joints, so the copies' weight
+  // columns start at differently aligned addresses; the weights are an exporter's float32
+  // values on four joints, which a sum in another order rounds differently.
+  const auto dir = test::fresh_temp_dir("gltf_seam_copies");
+  constexpr int kJoints = 15;
+  Skeleton chain;
+  chain.joints.resize(kJoints, 3);
+  chain.bones.resize(kJoints - 1, 2);
+  for (int j = 0; j < kJoints; ++j) chain.joints.row(j) << 0.001 * j, 0.01 * j, 0.0;
+  for (int b = 0; b + 1 < kJoints; ++b) chain.bones.row(b) << b, b + 1;
+  ObjDocument strip;
+  strip.positions.resize(5, 3);
+  strip.positions << -0.0100982189, 0.0030447026, 0.0130991964,  // corner 0
+      -0.0100982189, 0.0030447026, 0.0130991964,                 // its copy
+      -0.0096063241, 0.0033172930, 0.0131115047, -0.0093526598, 0.0036006258, 0.0121914437,
+      -0.0095858751, 0.0034365621, 0.0129141593;
+  strip.faces = {{ObjCorner{0, -1, -1}, ObjCorner{2, -1, -1}, ObjCorner{3, -1, -1}},
+                 {ObjCorner{4, -1, -1}, ObjCorner{1, -1, -1}, ObjCorner{3, -1, -1}}};
+  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(kJoints, 5);
+  for (int v = 0; v < 2; ++v) {
+    weights(6, v) = 9.9999100e-01;
+    weights(1, v) = 9.0247313e-06;
+    weights(0, v) = 1.1274304e-09;
+    weights(2, v) = 2.1259883e-14;
+  }
+  weights.rightCols(3).row(6).setOnes();
+  const SkinBinding skin = skin_of_skeleton(chain, weights);
+  const std::string rest_path = (dir / "rest.glb").string();
+  write_glb(rest_path, strip, nullptr, strip.positions, &skin);
+
+  tinygltf::Model model = test::load_glb(rest_path);
+  for (const int joint : {1, 6})
+    model.nodes[static_cast<std::size_t>(model.skins[0].joints[static_cast<std::size_t>(joint)])]
+        .rotation = {0.0, 0.0, std::sin(0.05), std::cos(0.05)};
+  const std::string posed_path = (dir / "posed.glb").string();
+  test::save_model(model, posed_path, true);
+
+  for (const std::string& path : {rest_path, posed_path}) {
+    CAPTURE(path);
+    const MatrixX3d& read = read_gltf(path).document.positions;
+    REQUIRE(read.rows() == 5);
+    CHECK(read.row(0) == read.row(1));
+  }
+}
+
 }  // namespace
 }  // namespace gr
