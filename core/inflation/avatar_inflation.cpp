@@ -68,7 +68,8 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
       al.update_multiplier(t);
     round.lambda1 = al.lambda1;
     round.lambda2 = al.lambda2;
-    round.snapped = problem.is_valid_snapping(x);
+    // A solve that ended at its goal has just checked this snap at x.
+    round.snapped = solve.status == SolverStatus::kGoalReached || problem.is_valid_snapping(x);
     if (on_round) on_round(round);
     if (round.snapped) {
       result.t_before_snap = t;

@@ -12,7 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/common/stopwatch.hpp"
-#include "core/io/atomic_file.hpp"
+#include "core/io/obj_document.hpp"
 #include "tools/pipeline/retarget.hpp"
 #include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 
@@ -21,15 +21,13 @@ namespace fs = std::filesystem;
 namespace {
 
 void write_obj(const fs::path& path, const gr::TriangleMesh& mesh) {
-  gr::write_file_atomically(path.string(), [&](std::ostream& out) {
-    out.precision(17);
-    for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
-      out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2)
-          << '\n';
-    for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-      out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' '
-          << mesh.faces(f, 2) + 1 << '\n';
-  });
+  gr::ObjDocument document;
+  document.positions = mesh.vertices;
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    document.faces.push_back({gr::ObjCorner{mesh.faces(f, 0), -1, -1},
+                              gr::ObjCorner{mesh.faces(f, 1), -1, -1},
+                              gr::ObjCorner{mesh.faces(f, 2), -1, -1}});
+  gr::write_obj(path.string(), document, mesh.vertices);
 }
 
 /// The variants of every family: three resolutions, an offset, and the scene turned,
