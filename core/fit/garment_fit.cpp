@@ -29,7 +29,9 @@ FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3
   GarmentProblem problem(scene, fit_parameters, GarmentProblem::Stage::kFit,
                          median_edge_ratio(scene.garment, inflated));
   Eigen::VectorXd x = problem.layout().pack(1.0, inflated);
-  ProjectedNewton newton(parameters.newton);
+  NewtonOptions options = parameters.newton;
+  options.max_iterations = parameters.fit_iteration_cap();
+  ProjectedNewton newton(options);
   FitResult result;
   result.solve = newton.minimize(problem, x, on_newton_step);
   result.garment = problem.layout().garment(x);

@@ -7,11 +7,16 @@
 #include "core/common/stopwatch.hpp"
 
 namespace gr {
+namespace {
+/// A round stalls when t gains less than this fraction of its remaining distance to 1.
+constexpr double kStalledProgress = 0.01;
+}  // namespace
 
 const char* to_string(InflationStatus status) {
   switch (status) {
     case InflationStatus::kSnapped: return "snapped";
     case InflationStatus::kRoundLimit: return "round limit";
+    case InflationStatus::kStalled: return "stalled";
     case InflationStatus::kSolverFailure: return "solver failure";
   }
   return "unknown";
@@ -43,14 +48,20 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     return result;
   };
 
+  int stalled_rounds = 0;
   while (result.rounds < parameters.max_al_rounds) {
     ++result.rounds;
     problem.tether_to(x);
+    const double t_before = layout.t(x);
     const NewtonResult solve = newton.minimize(problem, x, on_newton_step);
     result.newton_iterations += solve.iterations;
     if (solve.status == SolverStatus::kNonFiniteEnergy)
       return finish(InflationStatus::kSolverFailure,
                     fmt::format("round {}: {}", result.rounds, solve.message));
+
+    const double t_after = layout.t(x);
+    stalled_rounds =
+        t_after - t_before < kStalledProgress * (1.0 - t_before) ? stalled_rounds + 1 : 0;
 
     InflationRound round{result.rounds, layout.t(x), 0.0, 0.0, 0.0, false, false, solve, {}};
     round.eta = 1.0 - std::sqrt(std::abs(1.0 - round.t));
@@ -79,6 +90,11 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
           fmt::format("snapped to t = 1 from t = {:.9g} after {} rounds ({} Newton steps)", t,
                       result.rounds, result.newton_iterations));
     }
+    if (stalled_rounds >= parameters.max_stalled_rounds)
+      return finish(InflationStatus::kStalled,
+                    fmt::format("stalled at t = {:.6g}: t gained less than {:g} of its remaining "
+                                "distance to 1 in {} rounds in a row",
+                                t_after, kStalledProgress, stalled_rounds));
   }
   return finish(InflationStatus::kRoundLimit,
                 fmt::format("no collision-free snap to t = 1 after {} rounds (t = {:.6g})",

@@ -8,8 +8,11 @@
 namespace gr {
 
 enum class InflationStatus {
-  kSnapped,        ///< t reached 1 exactly with a collision-free snap
-  kRoundLimit,     ///< max_al_rounds Newton solves without a valid snap
+  kSnapped,     ///< t reached 1 exactly with a collision-free snap
+  kRoundLimit,  ///< max_al_rounds Newton solves without a valid snap
+  /// t stopped growing for max_stalled_rounds rounds in a row: the garment is caught
+  /// between parts of the growing avatar
+  kStalled,
   kSolverFailure,  ///< a Newton solve met a non-finite energy
 };
 
@@ -50,7 +53,10 @@ struct InflationResult {
 /// lambda1, lambda2 fixed, then: eta = 1 - sqrt(|1 - t|); when eta < 0 the garment and t
 /// go back to the start and lambda1 doubles; then lambda1 doubles again while eta < 0.99
 /// and lambda1 < 1e6, else lambda2 += lambda1 (1 - t). The loop ends when snapping t to
-/// 1 (avatar A(t) → A, garment still) is collision free by CCD; t is then set to 1.
+/// 1 (avatar A(t) → A, garment still) is collision free by CCD; t is then set to 1. It
+/// also ends, kStalled, after parameters.max_stalled_rounds rounds in a row in which t
+/// gained less than 1% of its remaining distance to 1: raising lambda1 cannot move a
+/// pinched garment. A reset counts as no gain.
 /// @pre the initial garment and A0 are intersection free (the shrink step's invariant).
 /// @throw std::invalid_argument, InputError as GarmentProblem's constructor.
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,

@@ -42,7 +42,12 @@ struct RetargetParameters {
   /// 0.069 without it, 0.0014 and 0.020 at 0.03, 0.0021 and 0.011 at 0.1; goblin_puffer
   /// 0.0015 and 0.150 without, 0.0022 and 0.071 at 0.03, 0.0028 and 0.056 at 0.1.
   double w_fit_stretch = 0.03;
-  double w_fit = 2.0;            ///< fit step only
+  double w_fit = 2.0;  ///< fit step only
+  /// The fit's Newton step cap; 0: newton.max_iterations, as every inflation round.
+  int fit_max_iterations = 0;
+  int fit_iteration_cap() const {
+    return fit_max_iterations > 0 ? fit_max_iterations : newton.max_iterations;
+  }
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;      ///< model garment–garment contact
   /// Model it everywhere, also inside regions that provably cannot fold onto themselves
@@ -71,6 +76,11 @@ struct RetargetParameters {
   double max_lambda1 = 1e6;  ///< lambda1 doubles while below this and eta < eta_target
   double eta_target = 0.99;
   int max_al_rounds = 60;  ///< Newton solves before giving up
+  /// Rounds in a row in which t gains less than 1% of its remaining distance to 1 before
+  /// the inflation gives up as stalled. A garment pinched between growing parts of the avatar
+  /// holds t for good: the goblin_puffer with 45 Newton steps per round stopped at t = 0.768
+  /// in round 3 and spent its 57 remaining rounds there, doubling lambda1 to its cap.
+  int max_stalled_rounds = 3;
 };
 
 }  // namespace gr

@@ -90,15 +90,25 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--w-tether", o.w_tether,
                   "Weight pulling every garment vertex to its input place (per unit area) "
-                  "during the inflation, without skeletons only (default 1; 0 switches it off)")
+                  "during the inflation, without skeletons only (default 0.01; 0 switches it off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--w-fit-stretch", o.w_fit_stretch,
                   "Edge-stretch weight in the fit against the input garment at its inflated "
                   "size, with skeletons only (default 0.03; 0 switches it off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-newton-iterations", o.max_newton_iterations,
-                  "Iteration cap per Newton solve")
+                  "Iteration cap per Newton solve (each inflation round, and the fit unless "
+                  "--max-fit-iterations is given)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-fit-iterations", o.max_fit_iterations,
+                  "Iteration cap of the fit's Newton solve (fast: 40; else as each inflation "
+                  "round)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--pullback", o.skeleton_pullback,
+                  "Skeleton shrink: fraction of each avatar vertex's offset from its bone kept "
+                  "in the shrunk avatar (default 0.25; halved while it meets the garment, and "
+                  "a fifth of it is tried when the inflation stalls)")
+      ->check(CLI::Range(1e-6, 1.0));
   cmd->add_option("--max-al-rounds", o.max_al_rounds, "Cap on augmented-Lagrangian rounds")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--inflation-step", o.inflation_step_length,

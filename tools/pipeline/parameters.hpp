@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/inflation/retarget_parameters.hpp"
+#include "shrink/shrunk_avatar/skeleton_shrink.hpp"
 
 namespace gr {
 
@@ -14,6 +15,8 @@ namespace gr {
 struct PipelineParameters {
   RetargetParameters solver;
   double voxel_size = 0.01;  ///< signed-distance grid spacing
+  /// Skeleton shrink: the first pullback tried (SkeletonShrinkOptions::pullback).
+  double skeleton_pullback = SkeletonShrinkOptions{}.pullback;
 };
 
 /// Barrier stiffness of every preset: 1e6 rather than the paper's 1e8. Measured on both
@@ -46,8 +49,10 @@ double energy_tolerance_for(double eps_tol);
 /// Individual overrides given on the command line; unset ones keep the preset's value.
 struct ParameterOverrides {
   std::optional<double> dhat, fit_dhat, w_contact, w_fit, w_pos, w_stretch, w_anchor, w_tether,
-      w_fit_stretch, eps_tol, voxel_size, ccd_min_separation_ratio, inflation_step_length;
-  std::optional<int> max_newton_iterations, max_al_rounds, fit_samples;
+      w_fit_stretch, eps_tol, voxel_size, ccd_min_separation_ratio, inflation_step_length,
+      skeleton_pullback;
+  /// max_newton_iterations caps the fit too unless max_fit_iterations is given.
+  std::optional<int> max_newton_iterations, max_fit_iterations, max_al_rounds, fit_samples;
   std::optional<bool> self_contact, self_contact_everywhere;
 
   void apply_to(PipelineParameters& parameters) const;

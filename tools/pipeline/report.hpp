@@ -40,6 +40,10 @@ struct RetargetReport {
   double shrink_depth = 0.0;            ///< levelset erosion d, normalized units (0 for skeleton)
   int shrink_medial_vertices = 0;       ///< vertices stopped in the medial region
   bool shrink_full_depth_grid = false;  ///< levelset: eroded deeper than the distance band
+  double shrink_pullback = 0.0;  ///< skeleton: the pullback of the shrunk avatar inflated last
+  /// skeleton: the inflation stalled from the first shrunk avatar and ran again from a
+  /// thinner one
+  bool shrink_thinned = false;
 
   int al_rounds = 0;
   int al_resets = 0;

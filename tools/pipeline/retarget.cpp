@@ -254,6 +254,22 @@ NewtonCallback newton_progress(const Run& run, const char* stage_name) {
   };
 }
 
+/// The shrink's results in the report, and its line in the progress.
+void record_shrink(Run& run, const ShrinkResult& shrunk, double seconds) {
+  RetargetReport& report = run.report();
+  report.shrink_depth = shrunk.depth;
+  report.shrink_medial_vertices = shrunk.medial_vertices;
+  report.shrink_full_depth_grid = shrunk.full_depth_grid;
+  report.shrink_pullback = shrunk.pullback;
+  report.seconds.shrink = seconds;
+  run.progress.log("shrink", "{} shrink certified free of the garment in {:.2f} s",
+                   to_string(report.shrink_mode), seconds);
+}
+
+/// When the inflation fails from a skeleton-shrunk avatar, it runs again from one shrunk
+/// with this fraction of its pullback (SkeletonShrinkOptions::pullback: 0.25, then 0.05).
+constexpr double kStalledPullbackFactor = 0.2;
+
 /// Inflate: the avatar grows back from A0 to A under barrier contact (Algorithm 1).
 InflationResult inflate_stage(Run& run, const Inputs& in, SolverScene& solver) {
   const StageTimer timer;
@@ -540,9 +556,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const StageTimer shrink_timer;
   const SignedDistanceGrid grid = distance_grid_stage(run, in.normalized.avatar);
   const GridDistanceField distance_field(grid);
+  Eigen::MatrixXd skin_weights;
   ShrinkResult shrunk;
   try {
-    const Eigen::MatrixXd skin_weights =
+    skin_weights =
         report.shrink_mode == ShrinkMode::kSkeleton
             ? skin_weights_for_shrink(in.scene, in.normalized, options.inference, report.inferred)
             : in.scene.skin_weights;
@@ -550,7 +567,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     if (report.inferred.skin_weights_inferred)
       run.progress.log("shrink", "skin weights inferred: {} binding in {:.2f} s",
                        report.inferred.binding_method, report.inferred.binding.seconds);
-    shrunk = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid);
+    shrunk = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, {},
+                           run.parameters().skeleton_pullback);
   } catch (const NoValidShrinkError& e) {
     const Vector3d where =
         in.normalized.normalization.garment_to_scene.invert(e.conflict().position);
@@ -560,15 +578,36 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                               "frame)",
                               e.what(), where.x(), where.y(), where.z()));
   }
-  report.shrink_depth = shrunk.depth;
-  report.shrink_medial_vertices = shrunk.medial_vertices;
-  report.shrink_full_depth_grid = shrunk.full_depth_grid;
-  report.seconds.shrink = shrink_timer.seconds();
-  run.progress.log("shrink", "{} shrink certified free of the garment in {:.2f} s",
-                   to_string(report.shrink_mode), report.seconds.shrink);
+  record_shrink(run, shrunk, shrink_timer.seconds());
 
   SolverScene solver = solver_scene_stage(run, in, shrunk, distance_field);
-  const InflationResult inflation = inflate_stage(run, in, solver);
+  InflationResult inflation = inflate_stage(run, in, solver);
+  if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure &&
+      report.shrink_mode == ShrinkMode::kSkeleton) {
+    // A thinner shrunk avatar leaves the garment more room between body parts.
+    const double pullback = kStalledPullbackFactor * shrunk.pullback;
+    run.progress.log("inflate", "shrinking the avatar again with pullback {:.3g}", pullback);
+    const double first_shrink = report.seconds.shrink, first_inflate = report.seconds.inflate;
+    const int first_rounds = report.al_rounds, first_iterations = report.inflate_newton_iterations;
+    const StageTimer thin_timer;
+    std::optional<ShrinkResult> thinner;
+    try {
+      thinner = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, {}, pullback);
+    } catch (const NoValidShrinkError& e) {
+      run.progress.log("inflate", "no thinner shrunk avatar: {}", e.what());
+    }
+    if (thinner) {
+      shrunk = std::move(*thinner);
+      record_shrink(run, shrunk, thin_timer.seconds());
+      report.shrink_thinned = true;
+      solver = solver_scene_stage(run, in, shrunk, distance_field);
+      inflation = inflate_stage(run, in, solver);
+      report.seconds.shrink += first_shrink;
+      report.seconds.inflate += first_inflate;
+      report.al_rounds += first_rounds;
+      report.inflate_newton_iterations += first_iterations;
+    }
+  }
   if (!inflation.succeeded())
     return finish(RetargetStatus::kSolverFailure,
                   "inflation failed: " + inflation.message +

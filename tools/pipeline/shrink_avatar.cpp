@@ -62,7 +62,7 @@ SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_
 
 ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
-                           const ProgressCallback& progress) {
+                           const ProgressCallback& progress, std::optional<double> pullback) {
   if (mode == ShrinkMode::kLevelset) {
     if (!grid)
       throw std::invalid_argument("the level-set shrink needs the avatar's signed distance");
@@ -84,6 +84,7 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
   }
   require_skeletons_for(mode, scene.source_skeleton.has_value(), "");
   SkeletonShrinkOptions options;
+  if (pullback) options.pullback = *pullback;
   options.progress = progress;
   return shrink_to_skeleton(scene.avatar, scene.garment, *scene.source_skeleton,
                             *scene.target_skeleton, skin_weights, options);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "shrink/common/progress.hpp"
@@ -35,11 +36,14 @@ SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_
 ///        only. When the shrink needs to erode deeper than its band, a full-depth grid is
 ///        built for it (ShrinkResult::full_depth_grid).
 /// @param skin_weights #joints × #avatar vertices, or empty (skeleton mode only).
+/// @param pullback skeleton mode: the first pullback tried (SkeletonShrinkOptions); unset:
+///        its default.
 /// @throw InputError in skeleton mode without skeletons; std::invalid_argument in levelset
 ///        mode without a grid; NoValidShrinkError when no shrink is found.
 ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
-                           const ProgressCallback& progress = {});
+                           const ProgressCallback& progress = {},
+                           std::optional<double> pullback = {});
 
 /// Everything `garment-retarget shrink` can be asked.
 struct ShrinkRunOptions {

@@ -128,3 +128,31 @@ TEST_CASE("garment problem: the inflation's goal is a valid snap near t = 1, the
   GarmentProblem fit(fit_scene, parameters, GarmentProblem::Stage::kFit);
   CHECK_FALSE(fit.goal_reached(fit.layout().pack(1.0, inflated.garment)));
 }
+
+TEST_CASE("avatar inflation: a garment pinched between two growing parts stops as stalled",
+          "[inflation][integration]") {
+  // A sphere garment around one sphere part of the avatar; a second part outside it grows
+  // into the first (their full sizes overlap), so the garment between them has no room and t
+  // cannot reach 1.
+  GarmentScene scene = test::inflating_sphere_scene(1, 2);
+  const TriangleMesh inner = scene.avatar;
+  TriangleMesh outer = test::icosphere(1, 1.0);
+  const Vector3d outer_centre(1.6, 0.0, 0.0);
+  outer.vertices.rowwise() += outer_centre.transpose();
+  scene.avatar.vertices.resize(inner.vertices.rows() + outer.vertices.rows(), 3);
+  scene.avatar.vertices << inner.vertices, outer.vertices;
+  scene.avatar.faces.resize(inner.faces.rows() + outer.faces.rows(), 3);
+  scene.avatar.faces << inner.faces, (outer.faces.array() + inner.vertices.rows()).matrix();
+  MatrixX3d outer_shrunk = 0.3 * test::icosphere(1, 1.0).vertices;
+  outer_shrunk.rowwise() += outer_centre.transpose();
+  scene.shrunk_avatar.resize(scene.avatar.vertices.rows(), 3);
+  scene.shrunk_avatar << 0.5 * inner.vertices, outer_shrunk;
+
+  RetargetParameters parameters;
+  parameters.newton.max_iterations = 100;
+  const InflationResult result = inflate_avatar(scene, parameters);
+  INFO(result.message);
+  CHECK(result.status == InflationStatus::kStalled);
+  CHECK(result.rounds < parameters.max_al_rounds);
+  CHECK(result.t < 1.0);
+}

@@ -72,6 +72,33 @@ TEST_CASE("retarget infers the skin weights and the no-fit list it is not given"
   REQUIRE(ids.size() >= inferred["no_fit"]["vertices"].get<std::size_t>());
 }
 
+TEST_CASE("an inflation that stalls from a thick shrunk avatar runs again from a thinner one",
+          "[pipeline][e2e][skeleton]") {
+  // At pullback 0.5 the goblin's arms and body grow into the puffer between them: t stalls
+  // near 0.58. A fifth of the pullback leaves the puffer room.
+  const std::string d = test::shared_data("");
+  const fs::path out = test::fresh_temp_dir("thinned_shrink");
+  const test::CliRun run = test::run_cli(
+      {"retarget", "--garment", d + "/garments/puffer/garment.obj", "--no-fit",
+       d + "/garments/puffer/no-fit.txt", "--avatar", d + "/avatars/goblin/avatar.obj",
+       "--source-skeleton", d + "/garments/puffer/skeleton.obj", "--target-skeleton",
+       d + "/avatars/goblin/skeleton.obj", "--skin-weights", d + "/avatars/goblin/skin.txt",
+       "--pullback", "0.5", "--quality", "fast", "--out", out.string()},
+      "thinned_shrink");
+  CAPTURE(run.out, run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK(run.err.find("inflate  stalled at t = ") != std::string::npos);
+  CHECK(run.err.find("shrinking the avatar again with pullback 0.1") != std::string::npos);
+
+  std::ifstream report_file(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(report_file);
+  CHECK(report["certified"] == true);
+  CHECK(report["shrink"]["thinned"] == true);
+  CHECK(report["shrink"]["pullback"].get<double>() == Approx(0.1));
+  CHECK(report["parameters"]["skeleton_pullback"].get<double>() == 0.5);
+  CHECK(report["inflate"]["status"] == "snapped");
+}
+
 TEST_CASE("a root joint outside the skeleton is bad input", "[pipeline][inference]") {
   const std::string d = test::shared_data("");
   const fs::path out = test::fresh_temp_dir("inferred_root");
