@@ -59,13 +59,12 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
       return finish(InflationStatus::kSolverFailure,
                     fmt::format("round {}: {}", result.rounds, solve.message));
 
-    const double t_after = layout.t(x);
-    stalled_rounds =
-        t_after - t_before < kStalledProgress * (1.0 - t_before) ? stalled_rounds + 1 : 0;
-
     InflationRound round{result.rounds, layout.t(x), 0.0, 0.0, 0.0, false, false, solve, {}};
     round.eta = 1.0 - std::sqrt(std::abs(1.0 - round.t));
     if (on_round) round.garment = layout.garment(x);
+    // A reset is the augmented Lagrangian's own remedy (t overshot), not a pinch.
+    const bool gained = round.t - t_before >= kStalledProgress * (1.0 - t_before);
+    stalled_rounds = gained || round.eta < 0.0 ? 0 : stalled_rounds + 1;
     if (round.eta < 0.0) {
       x = initial;
       al.lambda1 *= 2.0;
@@ -94,7 +93,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
       return finish(InflationStatus::kStalled,
                     fmt::format("stalled at t = {:.6g}: t gained less than {:g} of its remaining "
                                 "distance to 1 in {} rounds in a row",
-                                t_after, kStalledProgress, stalled_rounds));
+                                round.t, kStalledProgress, stalled_rounds));
   }
   return finish(InflationStatus::kRoundLimit,
                 fmt::format("no collision-free snap to t = 1 after {} rounds (t = {:.6g})",

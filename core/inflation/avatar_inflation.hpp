@@ -56,7 +56,7 @@ struct InflationResult {
 /// 1 (avatar A(t) → A, garment still) is collision free by CCD; t is then set to 1. It
 /// also ends, kStalled, after parameters.max_stalled_rounds rounds in a row in which t
 /// gained less than 1% of its remaining distance to 1: raising lambda1 cannot move a
-/// pinched garment. A reset counts as no gain.
+/// pinched garment. A round that resets does not count.
 /// @pre the initial garment and A0 are intersection free (the shrink step's invariant).
 /// @throw std::invalid_argument, InputError as GarmentProblem's constructor.
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,

@@ -308,6 +308,40 @@ InflationResult inflate_stage(Run& run, const Inputs& in, SolverScene& solver) {
   return inflation;
 }
 
+/// After a failed inflation from a skeleton-shrunk avatar: shrinks it again with
+/// kStalledPullbackFactor of its pullback and inflates once more (a thinner avatar leaves
+/// the garment more room between body parts). The report counts both attempts. Leaves
+/// everything as it was when no thinner shrunk avatar is free of the garment, and returns
+/// why; else returns "".
+std::string inflate_from_thinner_shrink(Run& run, const Inputs& in,
+                                        const Eigen::MatrixXd& skin_weights,
+                                        const SignedDistanceGrid& grid,
+                                        const DistanceField& distance_field, ShrinkResult& shrunk,
+                                        SolverScene& solver, InflationResult& inflation) {
+  RetargetReport& report = run.report();
+  const double pullback = kStalledPullbackFactor * shrunk.pullback;
+  run.progress.log("inflate", "shrinking the avatar again with pullback {:.3g}", pullback);
+  const StageTimer timer;
+  ShrinkResult thinner;
+  try {
+    thinner = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, {}, pullback);
+  } catch (const NoValidShrinkError& e) {
+    return e.what();
+  }
+  const double first_shrink = report.seconds.shrink, first_inflate = report.seconds.inflate;
+  const int first_rounds = report.al_rounds, first_iterations = report.inflate_newton_iterations;
+  shrunk = std::move(thinner);
+  record_shrink(run, shrunk, timer.seconds());
+  report.shrink_thinned = true;
+  solver = solver_scene_stage(run, in, shrunk, distance_field);
+  inflation = inflate_stage(run, in, solver);
+  report.seconds.shrink += first_shrink;
+  report.seconds.inflate += first_inflate;
+  report.al_rounds += first_rounds;
+  report.inflate_newton_iterations += first_iterations;
+  return "";
+}
+
 /// Fit: the garment settles onto the body (Step 3), with the end-of-fit measurements in the
 /// report.
 FitResult fit_stage(Run& run, SolverScene& solver, const MatrixX3d& inflated) {
@@ -584,29 +618,14 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   InflationResult inflation = inflate_stage(run, in, solver);
   if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure &&
       report.shrink_mode == ShrinkMode::kSkeleton) {
-    // A thinner shrunk avatar leaves the garment more room between body parts.
-    const double pullback = kStalledPullbackFactor * shrunk.pullback;
-    run.progress.log("inflate", "shrinking the avatar again with pullback {:.3g}", pullback);
-    const double first_shrink = report.seconds.shrink, first_inflate = report.seconds.inflate;
-    const int first_rounds = report.al_rounds, first_iterations = report.inflate_newton_iterations;
-    const StageTimer thin_timer;
-    std::optional<ShrinkResult> thinner;
-    try {
-      thinner = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, {}, pullback);
-    } catch (const NoValidShrinkError& e) {
-      run.progress.log("inflate", "no thinner shrunk avatar: {}", e.what());
-    }
-    if (thinner) {
-      shrunk = std::move(*thinner);
-      record_shrink(run, shrunk, thin_timer.seconds());
-      report.shrink_thinned = true;
-      solver = solver_scene_stage(run, in, shrunk, distance_field);
-      inflation = inflate_stage(run, in, solver);
-      report.seconds.shrink += first_shrink;
-      report.seconds.inflate += first_inflate;
-      report.al_rounds += first_rounds;
-      report.inflate_newton_iterations += first_iterations;
-    }
+    const std::string no_thinner = inflate_from_thinner_shrink(
+        run, in, skin_weights, grid, distance_field, shrunk, solver, inflation);
+    // The shrunk avatar is what failed: one the garment can escape from does not exist.
+    if (!no_thinner.empty())
+      return finish(RetargetStatus::kNoValidShrink,
+                    fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
+                                "failed: {}; and no thinner shrink is free of the garment: {}",
+                                shrunk.pullback, inflation.message, no_thinner));
   }
   if (!inflation.succeeded())
     return finish(RetargetStatus::kSolverFailure,
