@@ -104,6 +104,29 @@ TEST_CASE("an inflation that stalls from a thick shrunk avatar runs again from a
   CHECK(report["inflate"]["status"] == "snapped");
 }
 
+TEST_CASE("an inflation that fails from a shrink with no thinner one is a missing shrink",
+          "[pipeline][e2e][skeleton]") {
+  // Bound to the nearest bones, the goblin's thighs start on a forearm: the shrink at 0.25
+  // is free of the puffer, but the inflation cannot carry them home (two rounds here; it
+  // stalls at t = 0.61 given more), and no thinner shrink is free of the garment.
+  const std::string d = test::shared_data("");
+  const fs::path out = test::fresh_temp_dir("no_thinner_shrink");
+  const test::CliRun run = test::run_cli(
+      {"retarget", "--garment", d + "/garments/puffer/garment.obj", "--no-fit",
+       d + "/garments/puffer/no-fit.txt", "--avatar", d + "/avatars/goblin/avatar.obj",
+       "--source-skeleton", d + "/garments/puffer/skeleton.obj", "--target-skeleton",
+       d + "/avatars/goblin/skeleton.obj", "--binding", "nearest", "--max-al-rounds", "2",
+       "--quality", "fast", "--out", out.string(), "--quiet"},
+      "no_thinner_shrink");
+  CAPTURE(run.out, run.err);
+  CHECK(run.exit_code == 3);
+  const std::string said = run.out + run.err;
+  CHECK(said.find("the inflation from the skeleton shrink (pullback 0.25) failed") !=
+        std::string::npos);
+  CHECK(said.find("no thinner shrink is free of the garment") != std::string::npos);
+  CHECK_FALSE(fs::exists(out / "garment.obj"));
+}
+
 TEST_CASE("a root joint outside the skeleton is bad input", "[pipeline][inference]") {
   const std::string d = test::shared_data("");
   const fs::path out = test::fresh_temp_dir("inferred_root");
