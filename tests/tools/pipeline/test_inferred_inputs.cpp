@@ -111,13 +111,27 @@ TEST_CASE("an inflation that fails from a shrink with no thinner one is a missin
   // stalls at t = 0.61 given more), and no thinner shrink is free of the garment.
   const std::string d = test::shared_data("");
   const fs::path out = test::fresh_temp_dir("no_thinner_shrink");
-  const test::CliRun run = test::run_cli(
-      {"retarget", "--garment", d + "/garments/puffer/garment.obj", "--no-fit",
-       d + "/garments/puffer/no-fit.txt", "--avatar", d + "/avatars/goblin/avatar.obj",
-       "--source-skeleton", d + "/garments/puffer/skeleton.obj", "--target-skeleton",
-       d + "/avatars/goblin/skeleton.obj", "--binding", "nearest", "--max-al-rounds", "2",
-       "--quality", "fast", "--out", out.string(), "--quiet"},
-      "no_thinner_shrink");
+  const test::CliRun run = test::run_cli({"retarget",
+                                          "--garment",
+                                          d + "/garments/puffer/garment.obj",
+                                          "--no-fit",
+                                          d + "/garments/puffer/no-fit.txt",
+                                          "--avatar",
+                                          d + "/avatars/goblin/avatar.obj",
+                                          "--source-skeleton",
+                                          d + "/garments/puffer/skeleton.obj",
+                                          "--target-skeleton",
+                                          d + "/avatars/goblin/skeleton.obj",
+                                          "--binding",
+                                          "nearest",
+                                          "--max-al-rounds",
+                                          "2",
+                                          "--quality",
+                                          "fast",
+                                          "--out",
+                                          out.string(),
+                                          "--quiet"},
+                                         "no_thinner_shrink");
   CAPTURE(run.out, run.err);
   CHECK(run.exit_code == 3);
   const std::string said = run.out + run.err;
