@@ -254,14 +254,15 @@ NewtonCallback newton_progress(const Run& run, const char* stage_name) {
   };
 }
 
-/// The shrink's results in the report, and its line in the progress.
+/// The shrink's results in the report (its time added to the stage's), and its line in the
+/// progress.
 void record_shrink(Run& run, const ShrinkResult& shrunk, double seconds) {
   RetargetReport& report = run.report();
   report.shrink_depth = shrunk.depth;
   report.shrink_medial_vertices = shrunk.medial_vertices;
   report.shrink_full_depth_grid = shrunk.full_depth_grid;
   report.shrink_pullback = shrunk.pullback;
-  report.seconds.shrink = seconds;
+  report.seconds.shrink += seconds;
   run.progress.log("shrink", "{} shrink certified free of the garment in {:.2f} s",
                    to_string(report.shrink_mode), seconds);
 }
@@ -298,12 +299,13 @@ InflationResult inflate_stage(Run& run, const Inputs& in, SolverScene& solver) {
   if (inflation.succeeded() && widen_scope_if_left(run, solver, inflation.garment, "inflation"))
     inflation = inflate_avatar(solver.scene, parameters, on_round, on_newton);
   RetargetReport& report = run.report();
-  report.al_rounds = inflation.rounds;
-  report.al_resets = inflation.resets;
-  report.inflate_newton_iterations = inflation.newton_iterations;
+  // Added: a second inflation from a thinner shrink counts with the first.
+  report.al_rounds += inflation.rounds;
+  report.al_resets += inflation.resets;
+  report.inflate_newton_iterations += inflation.newton_iterations;
   report.inflate_fold_free = inflation.fold_free_fraction;
   report.inflate_status = to_string(inflation.status);
-  report.seconds.inflate = timer.seconds();
+  report.seconds.inflate += timer.seconds();
   run.progress.log("inflate", "{} ({:.2f} s)", inflation.message, report.seconds.inflate);
   return inflation;
 }
@@ -328,17 +330,11 @@ std::string inflate_from_thinner_shrink(Run& run, const Inputs& in,
   } catch (const NoValidShrinkError& e) {
     return e.what();
   }
-  const double first_shrink = report.seconds.shrink, first_inflate = report.seconds.inflate;
-  const int first_rounds = report.al_rounds, first_iterations = report.inflate_newton_iterations;
   shrunk = std::move(thinner);
   record_shrink(run, shrunk, timer.seconds());
   report.shrink_thinned = true;
   solver = solver_scene_stage(run, in, shrunk, distance_field);
   inflation = inflate_stage(run, in, solver);
-  report.seconds.shrink += first_shrink;
-  report.seconds.inflate += first_inflate;
-  report.al_rounds += first_rounds;
-  report.inflate_newton_iterations += first_iterations;
   return "";
 }
 

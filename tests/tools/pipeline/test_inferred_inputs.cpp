@@ -19,6 +19,26 @@
 using namespace gr;
 namespace fs = std::filesystem;
 
+namespace {
+
+/// `retarget` of the shared puffer onto the goblin with both skeletons, then `more`.
+std::vector<std::string> puffer_on_goblin(const std::vector<std::string>& more) {
+  const std::string d = test::shared_data("");
+  std::vector<std::string> args = {"retarget",
+                                   "--garment",
+                                   d + "/garments/puffer/garment.obj",
+                                   "--avatar",
+                                   d + "/avatars/goblin/avatar.obj",
+                                   "--source-skeleton",
+                                   d + "/garments/puffer/skeleton.obj",
+                                   "--target-skeleton",
+                                   d + "/avatars/goblin/skeleton.obj"};
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+}  // namespace
+
 TEST_CASE("skeleton shrink of every shared pairing with bound weights is certified",
           "[shrink][skeleton][binding]") {
   const auto [garment, avatar] = GENERATE(table<std::string, std::string>(
@@ -46,13 +66,10 @@ TEST_CASE("retarget infers the skin weights and the no-fit list it is not given"
           "[pipeline][e2e][inference]") {
   const std::string d = test::shared_data("");
   const fs::path out = test::fresh_temp_dir("inferred_inputs");
-  const test::CliRun run = test::run_cli(
-      {"retarget", "--garment", d + "/garments/puffer/garment.obj", "--avatar",
-       d + "/avatars/goblin/avatar.obj", "--source-skeleton", d + "/garments/puffer/skeleton.obj",
-       "--target-skeleton", d + "/avatars/goblin/skeleton.obj", "--source-body",
-       d + "/garments/puffer/source_body.obj", "--quality", "fast", "--out", out.string(),
-       "--quiet"},
-      "inferred_inputs");
+  const test::CliRun run =
+      test::run_cli(puffer_on_goblin({"--source-body", d + "/garments/puffer/source_body.obj",
+                                      "--quality", "fast", "--out", out.string(), "--quiet"}),
+                    "inferred_inputs");
   CAPTURE(run.out, run.err);
   REQUIRE(run.exit_code == 0);
 
@@ -84,11 +101,9 @@ TEST_CASE("an inflation that stalls from a thick shrunk avatar runs again from a
   const std::string d = test::shared_data("");
   const fs::path out = test::fresh_temp_dir("thinned_shrink");
   const test::CliRun run = test::run_cli(
-      {"retarget", "--garment", d + "/garments/puffer/garment.obj", "--no-fit",
-       d + "/garments/puffer/no-fit.txt", "--avatar", d + "/avatars/goblin/avatar.obj",
-       "--source-skeleton", d + "/garments/puffer/skeleton.obj", "--target-skeleton",
-       d + "/avatars/goblin/skeleton.obj", "--skin-weights", d + "/avatars/goblin/skin.txt",
-       "--pullback", "0.5", "--quality", "fast", "--out", out.string()},
+      puffer_on_goblin({"--no-fit", d + "/garments/puffer/no-fit.txt", "--skin-weights",
+                        d + "/avatars/goblin/skin.txt", "--pullback", "0.5", "--quality", "fast",
+                        "--out", out.string()}),
       "thinned_shrink");
   CAPTURE(run.out, run.err);
   REQUIRE(run.exit_code == 0);
@@ -111,27 +126,11 @@ TEST_CASE("an inflation that fails from a shrink with no thinner one is a missin
   // stalls at t = 0.61 given more), and no thinner shrink is free of the garment.
   const std::string d = test::shared_data("");
   const fs::path out = test::fresh_temp_dir("no_thinner_shrink");
-  const test::CliRun run = test::run_cli({"retarget",
-                                          "--garment",
-                                          d + "/garments/puffer/garment.obj",
-                                          "--no-fit",
-                                          d + "/garments/puffer/no-fit.txt",
-                                          "--avatar",
-                                          d + "/avatars/goblin/avatar.obj",
-                                          "--source-skeleton",
-                                          d + "/garments/puffer/skeleton.obj",
-                                          "--target-skeleton",
-                                          d + "/avatars/goblin/skeleton.obj",
-                                          "--binding",
-                                          "nearest",
-                                          "--max-al-rounds",
-                                          "2",
-                                          "--quality",
-                                          "fast",
-                                          "--out",
-                                          out.string(),
-                                          "--quiet"},
-                                         "no_thinner_shrink");
+  const test::CliRun run =
+      test::run_cli(puffer_on_goblin({"--no-fit", d + "/garments/puffer/no-fit.txt", "--binding",
+                                      "nearest", "--max-al-rounds", "2", "--quality", "fast",
+                                      "--out", out.string(), "--quiet"}),
+                    "no_thinner_shrink");
   CAPTURE(run.out, run.err);
   CHECK(run.exit_code == 3);
   const std::string said = run.out + run.err;
