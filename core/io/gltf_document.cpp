@@ -12,6 +12,7 @@
 #include "core/common/errors.hpp"
 #include "core/io/gltf_accessors.hpp"
 #include "core/io/gltf_model.hpp"
+#include "core/io/input_file.hpp"
 
 namespace gr {
 
@@ -50,9 +51,10 @@ bool read_inside_folder(std::vector<unsigned char>* out, std::string* err, const
     if (err) *err += "'" + path + "' is outside the asset's folder\n";
     return false;
   }
-  std::ifstream in(file, std::ios::binary);
+  std::ifstream in;
+  if (fs::is_regular_file(file, error)) in.open(file, std::ios::binary);
   if (!in) {
-    if (err) *err += "cannot open '" + path + "'\n";
+    if (err) *err += "cannot open '" + path + "' (missing or not a regular file)\n";
     return false;
   }
   out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -78,6 +80,7 @@ std::string first_line(const std::string& text) {
 }
 
 tinygltf::Model load_model(const std::string& path) {
+  require_regular_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open the file");
   const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in),

@@ -1,5 +1,7 @@
 #include "core/io/obj_document.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -245,59 +247,115 @@ void write_obj(const std::string& path, const ObjDocument& doc,
 
 namespace {
 
-/// Relative file names a material library references (`map_*`, `bump`, `disp`, `decal`,
-/// `refl`), taken as the last token's line remainder so names with spaces survive.
-std::vector<std::string> referenced_textures(const std::string& mtl_path) {
-  std::vector<std::string> names;
-  std::ifstream in(mtl_path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::string_view view = trim(line);
-    if (!view.empty() && view.back() == '\r') view.remove_suffix(1);
-    const auto space = view.find_first_of(" \t");
-    if (space == std::string_view::npos) continue;
-    const std::string_view keyword = view.substr(0, space);
-    if (keyword.rfind("map_", 0) != 0 && keyword != "bump" && keyword != "disp" &&
-        keyword != "decal" && keyword != "refl")
-      continue;
-    std::string_view rest = trim(view.substr(space));
-    // Options such as "-bm 1.0" come before the file name.
-    while (!rest.empty() && rest.front() == '-') {
-      const auto tokens = TextFile::split(rest);
-      if (tokens.size() < 3) break;
-      const auto after = rest.find(tokens[2]);
-      rest = trim(rest.substr(after));
+/// Arguments an MTL texture option takes before the file name; -o, -s and -t take one to
+/// three numbers (-1: as many as parse as numbers, up to three).
+int texture_option_arguments(std::string_view option) {
+  if (option == "-o" || option == "-s" || option == "-t") return -1;
+  if (option == "-mm") return 2;
+  return 1;  // -blendu -blendv -bm -boost -cc -clamp -imfchan -texres -type, and unknown ones
+}
+
+bool is_number(std::string_view token) {
+  double value = 0.0;
+  const char* first = token.data() + (!token.empty() && token.front() == '+' ? 1 : 0);
+  const auto [end, error] = std::from_chars(first, token.data() + token.size(), value);
+  return error == std::errc() && end == token.data() + token.size() && first != end;
+}
+
+/// Where the file name starts in the arguments of a texture statement: after its options.
+std::string_view texture_file_name(std::string_view rest) {
+  for (;;) {
+    rest = trim(rest);
+    if (rest.empty() || rest.front() != '-') return rest;
+    const auto option_end = std::min(rest.find_first_of(" \t"), rest.size());
+    const std::string_view option = rest.substr(0, option_end);
+    rest = rest.substr(option_end);
+    const int wanted = texture_option_arguments(option);
+    for (int taken = 0; wanted < 0 ? taken < 3 : taken < wanted; ++taken) {
+      const std::string_view left = trim(rest);
+      const auto end = std::min(left.find_first_of(" \t"), left.size());
+      if (left.empty() || (wanted < 0 && !is_number(left.substr(0, end)))) break;
+      rest = left.substr(end);
     }
-    if (!rest.empty()) names.emplace_back(rest);
   }
-  return names;
+}
+
+/// Copies `relative` from `source_dir` into `out_dir` when the asset rules allow it; a
+/// refused or missing reference stays in the output as text and becomes a warning.
+void copy_asset_file(const std::filesystem::path& source_dir, const std::string& relative,
+                     const std::string& out_dir, bool allow_external,
+                     std::vector<std::string>& warnings, bool& copied) {
+  namespace fs = std::filesystem;
+  copied = false;
+  const fs::path reference(relative);
+  const fs::path from = source_dir / reference;
+  const auto refuse = [&](const char* why) {
+    warnings.push_back(fmt::format("{}: {}; kept as text, not copied", from.string(), why));
+  };
+  if (reference.is_absolute()) return refuse("an absolute path");
+  const fs::path normal = reference.lexically_normal();
+  if (!normal.empty() && *normal.begin() == "..") return refuse("leaves the asset's folder (..)");
+  std::error_code ec;
+  const fs::file_status status = fs::status(from, ec);
+  if (!fs::exists(status)) {
+    warnings.push_back(fmt::format("{}: referenced file not found, not copied", from.string()));
+    return;
+  }
+  if (!fs::is_regular_file(status)) return refuse("not a regular file");
+  if (!allow_external) {
+    const fs::path folder = fs::weakly_canonical(fs::absolute(source_dir), ec);
+    const fs::path target = fs::weakly_canonical(fs::absolute(from), ec);
+    const auto [end, unused] =
+        std::mismatch(folder.begin(), folder.end(), target.begin(), target.end());
+    if (ec || end != folder.end())
+      return refuse(
+          "a symbolic link out of the asset's folder (--allow-external-assets copies it)");
+  }
+  const fs::path to = fs::path(out_dir) / normal;
+  if (fs::exists(to, ec) && fs::equivalent(from, to, ec)) {
+    copied = true;
+    return;
+  }
+  fs::create_directories(to.parent_path(), ec);
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
+  if (ec) throw OutputError(to.string() + ": cannot copy: " + ec.message());
+  copied = true;
 }
 
 }  // namespace
 
-std::vector<std::string> copy_material_files(const ObjDocument& doc, const std::string& out_dir) {
+std::vector<std::string> material_texture_names(std::string_view mtl_text) {
+  std::vector<std::string> names;
+  while (!mtl_text.empty()) {
+    const auto end = std::min(mtl_text.find('\n'), mtl_text.size());
+    std::string_view view = trim(mtl_text.substr(0, end));
+    mtl_text.remove_prefix(std::min(end + 1, mtl_text.size()));
+    if (!view.empty() && view.back() == '\r') view = trim(view.substr(0, view.size() - 1));
+    const auto space = view.find_first_of(" \t");
+    if (space == std::string_view::npos) continue;
+    const std::string_view keyword = view.substr(0, space);
+    if (keyword.rfind("map_", 0) != 0 && keyword != "bump" && keyword != "disp" &&
+        keyword != "decal" && keyword != "refl" && keyword != "norm")
+      continue;
+    const std::string_view name = texture_file_name(view.substr(space));
+    if (!name.empty()) names.emplace_back(name);
+  }
+  return names;
+}
+
+std::vector<std::string> copy_material_files(const ObjDocument& doc, const std::string& out_dir,
+                                             bool allow_external_assets) {
   namespace fs = std::filesystem;
   std::vector<std::string> warnings;
   const fs::path source_dir = fs::path(doc.source_path).parent_path();
-  auto copy_one = [&](const std::string& relative) {
-    const fs::path from = source_dir / relative;
-    const fs::path to = fs::path(out_dir) / relative;
-    std::error_code ec;
-    if (!fs::is_regular_file(from, ec)) {
-      warnings.push_back(fmt::format("{}: referenced file not found, not copied", from.string()));
-      return false;
-    }
-    if (fs::exists(to, ec) && fs::equivalent(from, to, ec)) return true;
-    fs::create_directories(to.parent_path(), ec);
-    fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
-    if (ec) throw OutputError(to.string() + ": cannot copy: " + ec.message());
-    return true;
-  };
   for (const auto& library : doc.material_libraries) {
-    if (fs::path(library).is_absolute()) continue;
-    if (!copy_one(library)) continue;
-    for (const auto& texture : referenced_textures((source_dir / library).string()))
-      if (!fs::path(texture).is_absolute()) copy_one(texture);
+    bool copied = false;
+    copy_asset_file(source_dir, library, out_dir, allow_external_assets, warnings, copied);
+    if (!copied) continue;
+    std::ifstream in(source_dir / library, std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    for (const auto& texture : material_texture_names(text))
+      copy_asset_file(source_dir, texture, out_dir, allow_external_assets, warnings, copied);
   }
   return warnings;
 }

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/common/types.hpp"
@@ -60,10 +61,20 @@ ObjDocument read_obj(const TextFile& file);
 void write_obj(const std::string& path, const ObjDocument& document,
                const Eigen::Ref<const MatrixX3d>& positions);
 
-/// Copies the document's material libraries, and the texture files they reference by
-/// relative path, from beside the source OBJ into `out_dir`. Missing files are skipped
-/// and returned as warnings (an asset without its textures still loads).
+/// Copies the document's material libraries, and the texture files they reference, from
+/// beside the source OBJ into `out_dir`. A reference is copied only when it stays inside
+/// the OBJ's folder: relative, without `..` out of it, a regular file (not a device or
+/// FIFO), and, unless `allow_external_assets`, not a symbolic link leading out of it.
+/// Other references, and missing files, stay in the output as text and are returned as
+/// warnings (an asset without its textures still loads).
+/// @throw OutputError when a file cannot be copied.
 std::vector<std::string> copy_material_files(const ObjDocument& document,
-                                             const std::string& out_dir);
+                                             const std::string& out_dir,
+                                             bool allow_external_assets = false);
+
+/// The texture file names an MTL library's text references (`map_*`, `bump`, `disp`,
+/// `decal`, `refl`, `norm`), after the statement's options (`-s 1 1 1 file.png` names
+/// `file.png`); names with spaces are kept whole.
+std::vector<std::string> material_texture_names(std::string_view mtl_text);
 
 }  // namespace gr

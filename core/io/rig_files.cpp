@@ -106,7 +106,9 @@ std::vector<int> read_vertex_list(const std::string& path, int vertex_count) {
   const TextFile file(path);
   std::vector<int> ids;
   for (std::size_t i = 0; i < file.line_count(); ++i) {
-    for (const auto token : TextFile::split(file.line(i))) {
+    std::string_view line = file.line(i);
+    line = line.substr(0, line.find('#'));
+    for (const auto token : TextFile::split(line)) {
       const long long id = file.parse_integer(token, i);
       if (id < 0) file.fail(i, fmt::format("negative vertex id {}", id));
       if (id >= vertex_count)

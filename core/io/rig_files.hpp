@@ -34,7 +34,8 @@ void check_skeletons_match(const Skeleton& source, const Skeleton& target,
 ///        non-finite, or a weight is negative.
 Eigen::MatrixXd read_skin_weights(const std::string& path, int joints, int vertices);
 
-/// Reads whitespace-separated 0-based vertex ids (a no-fit list).
+/// Reads whitespace-separated 0-based vertex ids (a no-fit list); `#` starts a comment that
+/// runs to the end of its line.
 /// @throw InputError on a malformed, negative or out-of-range id (>= vertex_count).
 std::vector<int> read_vertex_list(const std::string& path, int vertex_count);
 

@@ -7,10 +7,12 @@
 #include <utility>
 
 #include "core/common/errors.hpp"
+#include "core/io/input_file.hpp"
 
 namespace gr {
 
 TextFile::TextFile(const std::string& path) : path_(path) {
+  require_regular_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open file (missing or unreadable)");
   std::ostringstream buffer;

@@ -12,8 +12,8 @@ namespace gr {
 class TextFile {
  public:
   /// Reads the whole file.
-  /// @throw InputError when the file is missing, unreadable, empty (no non-blank
-  ///        character) or binary (contains a NUL byte).
+  /// @throw InputError when the file is missing, unreadable, not a regular file (a device
+  ///        or FIFO), empty (no non-blank character) or binary (contains a NUL byte).
   explicit TextFile(const std::string& path);
   /// Takes `contents` as the file named `name` (for data already in memory).
   /// @throw InputError when the contents are empty or binary.
