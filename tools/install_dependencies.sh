@@ -7,12 +7,13 @@ set -euo pipefail
 # libopenblas0-pthread: the system's default BLAS, so the determinism tests would see it if
 # the build stopped using ATLAS. libclang-rt-14-dev: libFuzzer and the sanitizers' runtimes
 # for the fuzz test (clang only recommends them, and recommends are not installed).
+# strace: the interrupted-run tests kill the program at each of its writes and renames.
 packages=(
   build-essential cmake ninja-build python3 python3-venv python3-dev clang clang-format libclang-rt-14-dev
   libeigen3-dev libsuitesparse-dev libatlas3-base libopenblas0-pthread libsleef-dev
   libcgal-dev libopenvdb-dev libboost-iostreams-dev libfcl-dev
   catch2 libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev libtinygltf-dev
-  libpng-dev chromium
+  libpng-dev chromium strace
 )
 # Node.js and npm bundle the report page's three.js at build time and drive the browser
 # tests; a machine with both from elsewhere (a newer Node.js with its own npm) keeps them.

@@ -44,6 +44,7 @@ STATUS_BY_EXIT_CODE = {
     4: "solver_failure",
     7: "shape_changed",
     8: "jobs_failed",
+    9: "limit_reached",
 }
 
 

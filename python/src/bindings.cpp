@@ -1,5 +1,7 @@
 // The garment_retarget._core module: the command line's commands run in this process, the
 // OBJ reader and writer for NumPy arrays, and the batch's per-job runner for the cluster.
+#include <signal.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -16,6 +18,8 @@
 #include "core/io/obj_document.hpp"
 #include "tools/batch/batch_run.hpp"
 #include "tools/cli/commands.hpp"
+#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/run_control.hpp"
 
 namespace nb = nanobind;
 
@@ -24,15 +28,46 @@ namespace {
 using RowMatrixX3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using RowMatrixX3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
+/// While alive, Ctrl-C and SIGTERM stop a running command at its next check (the command
+/// then exits 10) instead of waiting for Python, which sees no signal while the command
+/// runs without the GIL; Python's handlers come back after.
+class SignalsStopRuns {
+ public:
+  SignalsStopRuns() {
+    sigaction(SIGINT, nullptr, &python_interrupt_);
+    sigaction(SIGTERM, nullptr, &python_terminate_);
+    gr::clear_stop_request();
+    gr::stop_on_signals();
+  }
+  ~SignalsStopRuns() {
+    sigaction(SIGINT, &python_interrupt_, nullptr);
+    sigaction(SIGTERM, &python_terminate_, nullptr);
+  }
+  SignalsStopRuns(const SignalsStopRuns&) = delete;
+  SignalsStopRuns& operator=(const SignalsStopRuns&) = delete;
+
+ private:
+  struct sigaction python_interrupt_ {};
+  struct sigaction python_terminate_ {};
+};
+
 /// Runs `garment-retarget ARGS...` in this process; returns its exit code. Errors raise as
-/// the command line's would end it: UsageError, InputError, OutputError.
+/// the command line's would end it: UsageError, InputError, OutputError; an interrupted
+/// command raises KeyboardInterrupt.
 int run_command(const std::vector<std::string>& arguments) {
   int exit_code = 0;
   const std::unique_ptr<CLI::App> app = gr::make_command_line(exit_code);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());
   try {
-    const nb::gil_scoped_release unlocked;
-    app->parse(reversed);
+    {
+      const SignalsStopRuns signals;
+      const nb::gil_scoped_release unlocked;
+      app->parse(reversed);
+    }
+    if (exit_code == gr::kExitInterrupted) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw nb::python_error();
+    }
   } catch (const CLI::CallForHelp& e) {
     return app->exit(e);
   } catch (const CLI::CallForAllHelp& e) {

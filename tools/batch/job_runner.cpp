@@ -87,30 +87,11 @@ fs::path temporary_folder(const fs::path& out, const std::string& id) {
                            random() & 0xffffffu);
 }
 
-/// Moves `folder` to `destination` in one step, replacing what was there; the old folder
-/// ends up at `folder`, which is then removed. Where the file system cannot exchange two
-/// names (some network file systems), the old folder is moved aside first: a crash between
-/// the two renames leaves no `destination`, which the next batch computes again, never a
-/// partial one.
+/// Moves `folder` to `destination` in one step, replacing what was there and removing the
+/// old folder.
 void swap_into_place(const fs::path& folder, const fs::path& destination) {
-  const auto fail = [&]() {
-    return OutputError(fmt::format("{}: cannot move the job's outputs into place: {}",
-                                   destination.string(), std::strerror(errno)));
-  };
   std::error_code ignored;
-  if (renameat2(AT_FDCWD, folder.c_str(), AT_FDCWD, destination.c_str(), RENAME_EXCHANGE) == 0) {
-    fs::remove_all(folder, ignored);
-    return;
-  }
-  if (errno == ENOENT) {
-    if (std::rename(folder.c_str(), destination.c_str()) != 0) throw fail();
-    return;
-  }
-  if (errno != EINVAL && errno != ENOSYS) throw fail();
-  const fs::path aside = folder.string() + "-old";
-  if (std::rename(destination.c_str(), aside.c_str()) != 0) throw fail();
-  if (std::rename(folder.c_str(), destination.c_str()) != 0) throw fail();
-  fs::remove_all(aside, ignored);
+  if (exchange_folders(folder, destination)) fs::remove_all(folder, ignored);
 }
 
 bool certified_outputs(const fs::path& folder, const nlohmann::json& record,
@@ -154,6 +135,8 @@ std::string status_for_exit_code(int exit_code) {
     case kExitSolverFailure: return "solver_failure";
     case kExitOutputError: return "output_error";
     case kExitShapeChanged: return "shape_changed";
+    case kExitLimitReached: return "limit_reached";
+    case kExitInterrupted: return "interrupted";
     case -1: return "crashed";
     default: return "internal_error";
   }
@@ -185,8 +168,8 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
   // The job runs inside its folder and writes to ".": the paths its reports record are the
   // same wherever and under whichever temporary name it ran.
   for (const std::string& argument :
-       {std::string("--out"), std::string("."), std::string("--threads"),
-        std::to_string(std::max(1, runner.threads))})
+       {std::string("--out"), std::string("."), std::string("--write-in-place"),
+        std::string("--threads"), std::to_string(std::max(1, runner.threads))})
     arguments.push_back(argument);
 
   const Stopwatch clock;

@@ -94,7 +94,7 @@ const std::vector<std::string>& batch_input_keys() {
 }
 
 const std::vector<std::string>& batch_reserved_options() {
-  static const std::vector<std::string> names = {"out", "threads", "quiet"};
+  static const std::vector<std::string> names = {"out", "threads", "quiet", "write_in_place"};
   return names;
 }
 

@@ -12,6 +12,8 @@ struct BatchJob;
 struct ScenePaths;
 struct ShapeThresholds;
 struct InferenceOptions;
+struct RunLimits;
+class RunStopped;
 
 /// The options naming a scene's files: --garment, --avatar, --out (all required), and the
 /// optional --source-skeleton / --target-skeleton pair and --skin-weights.
@@ -24,6 +26,14 @@ void add_shape_check_options(CLI::App& command, ShapeThresholds& thresholds);
 /// The options for what retarget infers when it is not given: --source-body, the binding's
 /// and the no-fit inference's knobs, written into `inputs` and `options`.
 void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options);
+
+/// The limits of one run, shared by retarget and shrink: --max-input-mb, --max-faces,
+/// --max-memory-mb and --timeout, written into `limits`.
+void add_limit_options(CLI::App& command, RunLimits& limits);
+
+/// Prints a stopped run's error line; returns its exit code (kExitLimitReached or
+/// kExitInterrupted).
+int report_stopped_run(const RunStopped& stopped);
 
 /// Each subcommand registers itself on the root app; its callback stores the exit code.
 void add_retarget_command(CLI::App& root, int& exit_code);

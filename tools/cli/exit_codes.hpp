@@ -15,6 +15,9 @@ enum ExitCode : int {
   /// (retarget), or the garment's shape differs from --source beyond them (validate)
   kExitShapeChanged = 7,
   kExitBatchJobsFailed = 8,  ///< batch: some jobs did not end certified (see its summary.csv)
+  /// the run reached --timeout, or grew beyond --max-memory-mb while running; it wrote nothing
+  kExitLimitReached = 9,
+  kExitInterrupted = 10,  ///< Ctrl-C or SIGTERM; the run wrote nothing
 };
 
 }  // namespace gr

@@ -8,11 +8,14 @@
 #include "core/common/errors.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/run_control.hpp"
 
 int main(int argc, char** argv) {
   int exit_code = gr::kExitSuccess;
   const std::unique_ptr<CLI::App> command_line = gr::make_command_line(exit_code);
   CLI::App& app = *command_line;
+  // Ctrl-C and SIGTERM end a run at its next check, with its staging folder removed.
+  gr::stop_on_signals();
 
   try {
     app.parse(argc, argv);
@@ -28,6 +31,8 @@ int main(int argc, char** argv) {
   } catch (const gr::InputError& e) {
     std::fprintf(stderr, "garment-retarget: error: %s\n", e.what());
     return gr::kExitBadInput;
+  } catch (const gr::RunStopped& e) {
+    return gr::report_stopped_run(e);
   } catch (const gr::OutputError& e) {
     std::fprintf(stderr, "garment-retarget: error: %s\n", e.what());
     return gr::kExitOutputError;

@@ -132,7 +132,18 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   cmd->add_flag("--png", options->png,
                 "Also write OUT/front.png and OUT/side.png: the result rendered without a browser");
   cmd->add_flag("--quiet", options->quiet, "No progress on stderr");
+  add_limit_options(*cmd, options->limits);
+  cmd->add_flag("--allow-external-assets", options->allow_external_assets,
+                "Copy material libraries and textures that symbolic links lead to outside the "
+                "OBJ's folder (trusted local use; absolute and '..' references are never copied)");
+  cmd->add_flag("--write-in-place", options->write_in_place,
+                "Write into OUT directly, without the lock and the swap of a complete result "
+                "folder into place: for callers that give each run a private, fresh folder "
+                "(the batch does)");
   cmd->footer(
+      "The whole result is written into a staging folder beside OUT and swapped into place at\n"
+      "the end: OUT holds one run's complete result, the earlier one, or nothing. A run that\n"
+      "ends without a certified garment moves an earlier result to OUT.previous.\n"
       "Writes OUT/garment.obj (with its materials and textures: same vertex order, UVs, groups\n"
       "and materials as the input, positions in the avatar's frame and units), OUT/report.json\n"
       "(stage times, iterations, energies, fit error, what was modelled) and\n"
@@ -141,11 +152,18 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "from disk with no network).\n"
       "Exit codes: 0 certified, 1 certification failed, 2 bad input, 3 no valid shrink,\n"
       "4 solver failure, 5 output not writable, 6 internal error, 7 certified and written\n"
-      "but the garment's shape changed beyond the shape thresholds.");
+      "but the garment's shape changed beyond the shape thresholds, 9 --timeout or\n"
+      "--max-memory-mb reached, 10 interrupted (Ctrl-C, SIGTERM).");
   cmd->callback([options, shrink_mode, quality, &exit_code]() {
     if (!shrink_mode->empty()) options->shrink_mode = parse_shrink_mode(*shrink_mode);
     options->quality = parse_quality(*quality);
-    const RetargetResult result = run_retarget(*options);
+    RetargetResult result;
+    try {
+      result = run_retarget(*options);
+    } catch (const RunStopped& stopped) {
+      exit_code = report_stopped_run(stopped);
+      return;
+    }
     std::printf("%s\n", result.message.c_str());
     if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());
     exit_code = exit_code_for(result.status);

@@ -45,10 +45,20 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--quiet", *quiet, "No progress on stderr");
+  add_limit_options(*cmd, options->limits);
+  cmd->add_flag("--allow-external-assets", options->allow_external_assets,
+                "Copy material libraries and textures that symbolic links lead to outside the "
+                "OBJ's folder");
   cmd->callback([options, quiet, mode, &exit_code]() {
     if (!*quiet) options->progress = stderr_progress();
     options->mode = parse_shrink_mode(*mode);
-    const ShrinkRunResult result = run_shrink(*options);
+    ShrinkRunResult result;
+    try {
+      result = run_shrink(*options);
+    } catch (const RunStopped& stopped) {
+      exit_code = report_stopped_run(stopped);
+      return;
+    }
     std::printf("%s\n", result.message.c_str());
     if (result.found) std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());
     std::printf("report: %s\n", result.report_path.c_str());

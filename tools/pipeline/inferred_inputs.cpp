@@ -148,6 +148,8 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
   for (int v : report.no_fit.vertices) listed[static_cast<std::size_t>(v)] = 1;
   report.no_fit_path = out_dir + "/no-fit.txt";
   write_file_atomically(report.no_fit_path, [&](std::ostream& out) {
+    // The comment keeps an empty list a list that --no-fit reads back.
+    out << "# no-fit list inferred by garment-retarget: 0-based garment vertex ids\n";
     const auto& obj_to_sim = scene.garment.obj_to_sim;
     for (std::size_t p = 0; p < obj_to_sim.size(); ++p)
       if (obj_to_sim[p] >= 0 && listed[static_cast<std::size_t>(obj_to_sim[p])]) out << p << '\n';

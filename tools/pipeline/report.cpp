@@ -105,6 +105,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"avatar_faces_modelled", r.avatar_faces_modelled}}},
       {"inferred", to_json(r.inferred)},
       {"peak_memory_mb", r.peak_memory_mb},
+      {"estimated_memory_mb", r.estimated_memory_mb},
       {"certified", r.certified},
       {"warnings", r.warnings},
   };
@@ -114,6 +115,7 @@ nlohmann::json to_json(const RetargetReport& r) {
                     {"inpainted_vertices", r.skin.inpainted},
                     {"unreached_vertices", r.skin.unreached},
                     {"seconds", r.skin.seconds}};
+  if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;
 }
 

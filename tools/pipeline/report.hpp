@@ -80,6 +80,11 @@ struct RetargetReport {
   int avatar_faces_total = 0;
   int avatar_faces_modelled = 0;
   double peak_memory_mb = 0.0;
+  /// Peak memory estimated before the solve from the face counts (estimated_peak_memory_mb).
+  double estimated_memory_mb = 0.0;
+  /// Where the earlier result in the output folder was moved, when this run did not end
+  /// certified; empty otherwise.
+  std::string previous_result;
 
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <optional>
@@ -39,17 +40,28 @@ constexpr int kNewtonLogEvery = 10;
 /// on the written garment is reported: the loops of a fitted garment sit within a few
 /// thousandths of theirs.
 constexpr double kLoopOffsetWarning = 0.03;
+/// Garment-to-avatar size ratios (largest bounding-box sides, placed on the avatar) the
+/// pipeline retargets: a garment a hundredth of the avatar spans about ten barrier supports,
+/// and one a hundred times its size covers nothing of it.
+constexpr double kMinGarmentToAvatarSize = 1e-2;
+constexpr double kMaxGarmentToAvatarSize = 1e2;
 
 /// What every stage reads and writes: the options, the progress lines and the result whose
 /// report each stage fills in.
 struct Run {
-  explicit Run(const RetargetOptions& run_options)
-      : options(run_options), progress(run_options.quiet), out(run_options.out_dir) {}
+  Run(const RetargetOptions& run_options, const ResultFolder& result_folder,
+      const RunControl& run_control)
+      : options(run_options), folder(result_folder), control(run_control),
+        progress(run_options.quiet), out(result_folder.staging()) {}
 
   const RetargetOptions& options;
+  const ResultFolder& folder;
+  const RunControl& control;
   Progress progress;
   RetargetResult result;
+  /// Where the run writes (the staging folder); reports record folder.final_path().
   fs::path out;
+  std::string staged(const std::string& name) const { return (out / name).string(); }
 
   RetargetReport& report() { return result.report; }
   const PipelineParameters& parameters() const { return result.report.parameters; }
@@ -118,10 +130,58 @@ double surface_area(const TriangleMesh& mesh) {
   return area;
 }
 
-/// Read: the scene's files, the shrink mode, the output folder.
+/// Refuses a scene beyond the run's face and memory limits, before any costly work.
+void require_within_limits(Run& run, const Scene& scene) {
+  const RunLimits& limits = run.options.limits;
+  const auto garment_faces = static_cast<int>(scene.garment.mesh.faces.rows());
+  const auto avatar_faces = static_cast<int>(scene.avatar.mesh.faces.rows());
+  const auto too_many = [&](const std::string& path, const char* role, int faces) {
+    if (limits.max_faces > 0 && faces > limits.max_faces)
+      throw InputError(path, 0,
+                       fmt::format("the {} has {} faces, more than --max-faces {}", role, faces,
+                                   limits.max_faces));
+  };
+  too_many(run.options.inputs.garment, "garment", garment_faces);
+  too_many(run.options.inputs.avatar, "avatar", avatar_faces);
+  const double estimate = estimated_peak_memory_mb(garment_faces, avatar_faces);
+  run.report().estimated_memory_mb = estimate;
+  if (limits.max_memory_mb > 0.0 && estimate > limits.max_memory_mb)
+    throw InputError(
+        run.options.inputs.garment, 0,
+        fmt::format("a garment of {} faces on an avatar of {} faces needs about {:.0f} "
+                    "MB, more than --max-memory-mb {:g}",
+                    garment_faces, avatar_faces, estimate, limits.max_memory_mb));
+}
+
+/// The largest side of the bounding box of `points`.
+double largest_side(const MatrixX3d& points) {
+  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).maxCoeff();
+}
+
+/// Refuses a garment and avatar whose sizes in the normalized scene differ beyond what the
+/// solver's lengths (barrier support, steps, voxels, all fractions of the normalized avatar)
+/// can serve: such a pair is almost always two files in different units.
+void require_comparable_sizes(const Scene& scene, const NormalizedScene& normalized) {
+  const double garment = largest_side(normalized.garment.vertices);
+  const double avatar = largest_side(normalized.avatar.vertices);
+  const double ratio = garment / avatar;
+  if (ratio >= kMinGarmentToAvatarSize && ratio <= kMaxGarmentToAvatarSize) return;
+  const double garment_units = largest_side(scene.garment.mesh.vertices);
+  const double avatar_units = largest_side(scene.avatar.mesh.vertices);
+  throw InputError(
+      scene.garment_document.source_path, 0,
+      fmt::format("the garment ({:.4g} across in its file) is {:.3g} times the avatar's size "
+                  "({:.4g} across in its file) once placed on it; sizes within {:g} to {:g} "
+                  "times are retargeted: are the two files in the same units?",
+                  garment_units, ratio, avatar_units, kMinGarmentToAvatarSize,
+                  kMaxGarmentToAvatarSize));
+}
+
+/// Read: the scene's files and the shrink mode.
 Scene read_stage(Run& run) {
   const StageTimer timer;
   Scene scene = load_scene(run.options.inputs);
+  require_within_limits(run, scene);
   const bool has_skeletons = scene.source_skeleton.has_value();
   const ShrinkMode mode = run.options.shrink_mode.value_or(has_skeletons ? ShrinkMode::kSkeleton
                                                                          : ShrinkMode::kLevelset);
@@ -129,8 +189,7 @@ Scene read_stage(Run& run) {
     throw InputError(run.options.inputs.avatar, 0,
                      "skeleton shrink needs --source-skeleton and --target-skeleton");
   run.report().shrink_mode = mode;
-  prepare_output_folder(run.options.out_dir);
-  run.result.report_path = (run.out / "report.json").string();
+  run.result.report_path = run.folder.final_path("report.json");
   run.report().seconds.read = timer.seconds();
   return scene;
 }
@@ -143,6 +202,7 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
   const RetargetParameters& solver = run.parameters().solver;
   NormalizedScene normalized =
       make_normalized_scene(scene, lattice_spacing(std::min(solver.dhat, solver.fit_support())));
+  require_comparable_sizes(scene, normalized);
   // Rounding to the lattice can fold a sliver or close a hairline gap: keep the exact
   // coordinates then, and refuse the garment only if it crosses itself as given.
   SelfIntersections self = find_self_intersecting_face_pairs(normalized.garment, 1);
@@ -176,7 +236,9 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
 /// shrink (which builds a full-depth grid itself when it must erode deeper).
 SignedDistanceGrid distance_grid_stage(Run& run, const TriangleMesh& avatar) {
   const StageTimer timer;
-  SignedDistanceGrid grid = build_distance_grid(avatar, run.parameters().voxel_size);
+  SignedDistanceGrid grid = with_stop_hook(run.control, [&](const ProgressCallback& hook) {
+    return build_distance_grid(avatar, run.parameters().voxel_size, hook);
+  });
   run.progress.log("shrink", "signed distance: {} voxels of {:.4g} in {:.2f} s",
                    grid.active_voxel_count(), run.parameters().voxel_size, timer.seconds());
   return grid;
@@ -248,6 +310,7 @@ bool widen_scope_if_left(Run& run, SolverScene& solver, const MatrixX3d& garment
 /// Newton progress lines for the solve of `stage_name`.
 NewtonCallback newton_progress(const Run& run, const char* stage_name) {
   return [&run, stage_name](const NewtonProgress& step) {
+    run.control.check(stage_name);
     if (step.iteration <= 3 || step.iteration % kNewtonLogEvery == 0)
       run.progress.log(stage_name, "  Newton {:4d}  E {:.9g}  step {:.3g}  |g| {:.3g}  mu {:.2g}",
                        step.iteration, step.energy, step.step, step.gradient_norm, step.damping);
@@ -283,6 +346,7 @@ InflationResult inflate_stage(Run& run, const Inputs& in, SolverScene& solver) {
     write_avatar((frames_dir / "round_00_avatar.obj").string(), in, shrunk);
   }
   const auto on_round = [&](const InflationRound& round) {
+    run.control.check("inflate");
     run.progress.log(
         "inflate", "round {:2d}: t {:.9f}  eta {:.3g}  lambda1 {:.3g}  {} Newton steps{}{}",
         round.round, round.t, round.eta, round.lambda1, round.solve.iterations,
@@ -326,7 +390,9 @@ std::string inflate_from_thinner_shrink(Run& run, const Inputs& in,
   const StageTimer timer;
   ShrinkResult thinner;
   try {
-    thinner = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, {}, pullback);
+    thinner = with_stop_hook(run.control, [&](const ProgressCallback& hook) {
+      return shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, hook, pullback);
+    });
   } catch (const NoValidShrinkError& e) {
     return e.what();
   }
@@ -440,7 +506,7 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
     run.warn(
         "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
         "without a skin");
-    write_glb(run.result.garment_path, in.scene.garment_document, source, positions, nullptr);
+    write_glb(run.staged("garment.glb"), in.scene.garment_document, source, positions, nullptr);
     return;
   }
   if (!in.scene.avatar_skin && !bound)
@@ -449,7 +515,7 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
         "to their nearest bones");
   SkinBinding skin = *avatar_skin;
   skin.weights = garment_skin_weights(run, in, *avatar_skin, welded);
-  write_glb(run.result.garment_path, in.scene.garment_document, source, positions, &skin);
+  write_glb(run.staged("garment.glb"), in.scene.garment_document, source, positions, &skin);
 }
 
 /// Write: the garment with its materials, in the avatar's frame and units.
@@ -458,15 +524,16 @@ void write_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
   const std::string& format = run.options.format;
   const bool glb = format.empty() ? in.scene.garment_gltf.has_value() : format == "glb";
   if (glb) {
-    run.result.garment_path = (run.out / "garment.glb").string();
+    run.result.garment_path = run.folder.final_path("garment.glb");
     write_garment_glb(run, in, garment);
     run.report().seconds.write = timer.seconds();
     return;
   }
-  run.result.garment_path = (run.out / "garment.obj").string();
-  for (const auto& warning : copy_material_files(in.scene.garment_document, run.options.out_dir))
-    run.report().warnings.push_back(warning);
-  write_garment(run.result.garment_path, in, garment);
+  run.result.garment_path = run.folder.final_path("garment.obj");
+  for (const auto& warning : copy_material_files(in.scene.garment_document, run.out.string(),
+                                                 run.options.allow_external_assets))
+    run.warn(warning);
+  write_garment(run.staged("garment.obj"), in, garment);
   run.report().seconds.write = timer.seconds();
 }
 
@@ -475,22 +542,22 @@ void write_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
 Certificate certify_stage(Run& run) {
   const StageTimer timer;
   const RetargetOptions& options = run.options;
+  const std::string garment_file = run.staged(fs::path(run.result.garment_path).filename());
   const nlohmann::json extra = {
       {"inputs",
        {{"garment",
          {{"path", options.inputs.garment}, {"sha256", sha256_of_file(options.inputs.garment)}}},
         {"avatar",
          {{"path", options.inputs.avatar}, {"sha256", sha256_of_file(options.inputs.avatar)}}}}},
-      {"output",
-       {{"path", run.result.garment_path}, {"sha256", sha256_of_file(run.result.garment_path)}}},
+      {"output", {{"path", run.result.garment_path}, {"sha256", sha256_of_file(garment_file)}}},
       {"parameters", to_json(run.report())["parameters"]},
       {"shape", shape_report(run.report().shape, run.report().shape_thresholds)},
       {"quality", to_string(options.quality)}};
   ValidationOptions validation;
   validation.avatar_mesh = options.inputs.avatar_mesh;
-  const Certificate certificate =
-      certify_garment(run.result.garment_path, options.inputs.avatar, extra, validation);
-  write_certificate((run.out / "certificate.json").string(), certificate);
+  const Certificate certificate = certify_garment(garment_file, options.inputs.avatar, extra,
+                                                  validation, run.result.garment_path);
+  write_certificate(run.staged("certificate.json"), certificate);
   run.report().certified = certificate.certified();
   run.report().seconds.certify = timer.seconds();
   return certificate;
@@ -553,22 +620,33 @@ std::string measure_stage(Run& run, const Inputs& in, const std::vector<bool>& f
 }  // namespace
 
 RetargetResult run_retarget(const RetargetOptions& options) {
+  const RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
+  check_input_files(options.inputs, options.limits.max_input_mb);
+  ResultFolder folder(options.out_dir, input_files(options.inputs), options.write_in_place);
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
                          static_cast<std::size_t>(options.threads));
-  Run run(options);
+  Run run(options, folder, control);
   RetargetReport& report = run.report();
   report.quality = options.quality;
   report.parameters = parameters_for_quality(options.quality);
   options.overrides.apply_to(report.parameters);
   const StageTimer total;
-  const auto finish = [&](RetargetStatus status, std::string message) {
+  // The report is the last file of the folder; a run that did not end certified keeps the
+  // earlier result aside, so that it cannot be taken for this run's.
+  const auto finish = [&](RetargetStatus status, std::string message,
+                          const std::function<void()>& before_commit = {}) {
+    const bool certified =
+        status == RetargetStatus::kCertified || status == RetargetStatus::kShapeChanged;
     run.result.status = status;
     run.result.message = std::move(message);
+    if (!certified && folder.has_previous()) report.previous_result = folder.previous_path();
     report.seconds.total = total.seconds();
     report.peak_memory_mb = peak_memory_mb();
-    write_report(run.result.report_path, report);
+    write_report(run.staged("report.json"), report);
+    if (before_commit) before_commit();
+    folder.commit(!certified);
     return run.result;
   };
 
@@ -576,12 +654,15 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   in.scene = read_stage(run);
   in.normalized = normalize_stage(run, in.scene);
   in.scene.no_fit = no_fit_for_run(in.scene, in.normalized, !options.inputs.no_fit.empty(),
-                                   options.inputs.source_body, options.skirt, options.out_dir,
+                                   options.inputs.source_body, options.skirt, run.out.string(),
                                    options.inference, report.inferred);
-  if (report.inferred.no_fit_inferred)
+  if (report.inferred.no_fit_inferred) {
+    report.inferred.no_fit_path = folder.final_path("no-fit.txt");
     run.progress.log("no-fit", "inferred ({}): {} vertices, {} faces free, written to {}",
                      report.inferred.no_fit.method, report.inferred.no_fit.vertices.size(),
                      report.inferred.no_fit_faces, report.inferred.no_fit_path);
+  }
+  control.check("read");
 
   const StageTimer shrink_timer;
   const SignedDistanceGrid grid = distance_grid_stage(run, in.normalized.avatar);
@@ -589,16 +670,25 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Eigen::MatrixXd skin_weights;
   ShrinkResult shrunk;
   try {
-    skin_weights =
-        report.shrink_mode == ShrinkMode::kSkeleton
-            ? skin_weights_for_shrink(in.scene, in.normalized, options.inference, report.inferred)
-            : in.scene.skin_weights;
+    skin_weights = report.shrink_mode == ShrinkMode::kSkeleton
+                       ? with_stop_hook(control,
+                                        [&](const ProgressCallback& hook) {
+                                          InferenceOptions inference = options.inference;
+                                          inference.binding_options.progress = hook;
+                                          Eigen::MatrixXd weights = skin_weights_for_shrink(
+                                              in.scene, in.normalized, inference, report.inferred);
+                                          report.inferred.binding_options.progress = nullptr;
+                                          return weights;
+                                        })
+                       : in.scene.skin_weights;
     if (report.inferred.skin_weights_inferred) in.bound_skin_weights = skin_weights;
     if (report.inferred.skin_weights_inferred)
       run.progress.log("shrink", "skin weights inferred: {} binding in {:.2f} s",
                        report.inferred.binding_method, report.inferred.binding.seconds);
-    shrunk = shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, {},
+    shrunk = with_stop_hook(control, [&](const ProgressCallback& hook) {
+      return shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, hook,
                            run.parameters().skeleton_pullback);
+    });
   } catch (const NoValidShrinkError& e) {
     const Vector3d where =
         in.normalized.normalization.garment_to_scene.invert(e.conflict().position);
@@ -629,7 +719,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                       "; allow more work with --max-al-rounds and --max-newton-iterations, or "
                       "widen the barrier with --dhat");
   const FitResult fit = fit_stage(run, solver, inflation.garment);
-  if (fit.solve.status == SolverStatus::kNonFiniteEnergy)
+  if (fit.solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(fit.solve.gradient_norm))
     return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
 
   write_stage(run, in, fit.garment);
@@ -644,10 +734,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     status = RetargetStatus::kShapeChanged;
     summary += "; SHAPE CHANGED beyond its thresholds";
   }
-  RetargetResult done = finish(status, summary);
-  write_retarget_pages(options.out_dir, options.png, in.scene, in.normalized.normalization,
-                       certificate, done.report);
-  return done;
+  return finish(status, summary, [&]() {
+    write_retarget_pages(run.out.string(), options.png, in.scene, in.normalized.normalization,
+                         certificate, report);
+  });
 }
 
 }  // namespace gr

@@ -7,6 +7,7 @@
 #include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/report.hpp"
+#include "tools/pipeline/run_control.hpp"
 #include "tools/pipeline/scene.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
 
@@ -35,6 +36,13 @@ struct RetargetOptions {
   /// When a written GLB's skin takes the avatar's weights directly (see
   /// transfer_skin_weights).
   SkinTransferOptions skin_transfer;
+  /// Input sizes, faces, memory and time the run may take.
+  RunLimits limits;
+  /// Copy material files and textures that symbolic links lead to outside the OBJ's folder.
+  bool allow_external_assets = false;
+  /// Write into out_dir directly instead of swapping a complete result folder into place
+  /// (ResultFolder): for callers that give each run a private folder of their own.
+  bool write_in_place = false;
 };
 
 /// How a retarget run ended; the command line maps it to an exit code.
@@ -56,8 +64,14 @@ struct RetargetResult {
   RetargetReport report;
 };
 
-/// Runs the pipeline: read, normalize, shrink, inflate, fit, export, certify.
-/// @throw InputError for bad inputs, OutputError when out_dir cannot be written.
+/// Runs the pipeline: read, normalize, shrink, inflate, fit, export, certify. Every file is
+/// written into a staging folder that replaces out_dir in one step at the end (see
+/// ResultFolder): a run that returns leaves its whole result there, the earlier result
+/// removed when it is certified (kCertified, kShapeChanged), else kept at
+/// out_dir.previous; a run that throws leaves out_dir as it was.
+/// @throw InputError for bad inputs or inputs beyond options.limits, OutputError when
+///        out_dir cannot be written or another run holds it, RunStopped at the deadline,
+///        the memory limit or a stop request.
 RetargetResult run_retarget(const RetargetOptions& options);
 
 }  // namespace gr

@@ -1,11 +1,13 @@
 #include "tools/pipeline/scene.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 
 #include <fmt/format.h>
 
 #include "core/common/errors.hpp"
+#include "core/io/input_file.hpp"
 #include "core/skeleton/skin_matching.hpp"
 
 namespace gr {
@@ -81,6 +83,23 @@ void skeletons_from_skins(const ScenePaths& paths, Scene& scene) {
 }
 
 }  // namespace
+
+std::vector<std::string> input_files(const ScenePaths& paths) {
+  std::vector<std::string> files;
+  for (const std::string* path :
+       {&paths.garment, &paths.avatar, &paths.source_skeleton, &paths.target_skeleton,
+        &paths.skin_weights, &paths.no_fit, &paths.joint_map, &paths.source_body})
+    if (!path->empty()) files.push_back(*path);
+  return files;
+}
+
+void check_input_files(const ScenePaths& paths, double max_input_mb) {
+  const double max_bytes = max_input_mb * 1048576.0;
+  const auto limit = max_input_mb > 0.0 && max_bytes < static_cast<double>(UINTMAX_MAX)
+                         ? static_cast<std::uintmax_t>(max_bytes)
+                         : UINTMAX_MAX;
+  for (const std::string& file : input_files(paths)) require_regular_file(file, limit);
+}
 
 Scene load_scene(const ScenePaths& paths) {
   if (paths.garment.empty()) throw InputError("", 0, "no garment file given");

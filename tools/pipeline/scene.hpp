@@ -44,6 +44,14 @@ struct Scene {
   std::optional<SkinBinding> avatar_skin;
 };
 
+/// Every input file the paths name (the empty ones left out), garment and avatar first.
+std::vector<std::string> input_files(const ScenePaths& paths);
+
+/// Checks every input file before any is opened: each must be a regular file of at most
+/// `max_input_mb` MB (see require_regular_file).
+/// @throw InputError naming the first file that is not.
+void check_input_files(const ScenePaths& paths, double max_input_mb);
+
 /// Reads and checks every file of a scene. Garment and avatar may be OBJ or glTF (see
 /// read_gltf); without skeleton files, two skinned glTF files give the skeletons (their
 /// skins' joints matched by name, through the joint map when given) and the avatar's skin

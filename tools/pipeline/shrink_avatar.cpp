@@ -92,21 +92,37 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
 
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const Stopwatch stopwatch;
+  const RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
+  check_input_files(options.inputs, options.limits.max_input_mb);
+  ResultFolder folder(options.out_dir, input_files(options.inputs));
   const Scene scene = load_scene(options.inputs);
   check_options(options, scene);
-  prepare_output_folder(options.out_dir);
+  for (const auto& [role, faces] : {std::pair{"garment", scene.garment.mesh.faces.rows()},
+                                    std::pair{"avatar", scene.avatar.mesh.faces.rows()}})
+    if (options.limits.max_faces > 0 && faces > options.limits.max_faces)
+      throw InputError(
+          role == std::string("garment") ? options.inputs.garment : options.inputs.avatar, 0,
+          fmt::format("the {} has {} faces, more than --max-faces {}", role, faces,
+                      options.limits.max_faces));
+  // The caller's progress, then the run's limits.
+  const ProgressCallback progress = [&](const std::string& stage, double fraction) {
+    if (options.progress && !options.progress(stage, fraction)) return false;
+    return !control.poll(stage).has_value();
+  };
   const NormalizedScene normalized = make_normalized_scene(scene);
   const Normalization& normalization = normalized.normalization;
   const TriangleMesh& avatar = normalized.avatar;
 
   ShrinkRunResult run;
-  const std::filesystem::path out(options.out_dir);
-  run.report_path = (out / "report.json").string();
+  const std::filesystem::path out = folder.staging();
+  run.report_path = folder.final_path("report.json");
   nlohmann::json report;
-  auto write_report = [&]() {
+  auto write_report_and_commit = [&]() {
     report["seconds"] = stopwatch.seconds();
-    write_file_atomically(run.report_path,
+    if (!run.found && folder.has_previous()) report["previous_result"] = folder.previous_path();
+    write_file_atomically((out / "report.json").string(),
                           [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
+    folder.commit(!run.found);
   };
   report = {{"mode", to_string(options.mode)},
             {"avatar", options.inputs.avatar},
@@ -116,13 +132,12 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
              "positions in the garment file's frame"},
             {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
   try {
+    control.check("shrink");
     if (options.mode == ShrinkMode::kLevelset) {
       const Stopwatch grid_stopwatch;
-      const SignedDistanceGrid grid =
-          build_distance_grid(avatar, options.voxel_size, options.progress);
+      const SignedDistanceGrid grid = build_distance_grid(avatar, options.voxel_size, progress);
       run.grid_seconds = grid_stopwatch.seconds();
-      run.shrink =
-          shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, options.progress);
+      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, progress);
       report["voxel_size"] = options.voxel_size;
       report["grid_seconds"] = run.grid_seconds;
       report["grid_active_voxels"] = grid.active_voxel_count();
@@ -130,10 +145,13 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
       report["full_depth_grid"] = run.shrink.full_depth_grid;
     } else {
       InferenceReport inferred;
+      InferenceOptions inference;
+      inference.binding_options.progress = progress;
       const Eigen::MatrixXd weights =
-          skin_weights_for_shrink(scene, normalized, InferenceOptions{}, inferred);
+          skin_weights_for_shrink(scene, normalized, inference, inferred);
+      inferred.binding_options.progress = nullptr;
       report["inferred"] = to_json(inferred)["skin_weights"];
-      run.shrink = shrink_avatar(options.mode, normalized, weights, nullptr, options.progress);
+      run.shrink = shrink_avatar(options.mode, normalized, weights, nullptr, progress);
       report["pullback"] = run.shrink.pullback;
       report["collapsed_vertices"] = run.shrink.collapsed_vertices;
       report["collapse_rounds"] = run.shrink.collapse_rounds;
@@ -153,8 +171,11 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
         {"count", conflict.count},
         {"position", point_json(where)},
         {"message", run.message}};
-    write_report();
+    write_report_and_commit();
     return run;
+  } catch (const OperationCancelled&) {
+    if (std::optional<RunStopped> stop = control.poll("shrink")) throw RunStopped(*stop);
+    throw;
   }
 
   // Back to the garment's frame: the shrunk avatar lies over the garment as given.
@@ -163,9 +184,11 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const MatrixX3d positions = export_positions(
       scene.avatar_document, scene.avatar, garment_frame.invert_rows(run.shrink.vertices),
       [&](const Vector3d& x) { return garment_frame.invert(avatar_frame.apply(x)); });
-  run.avatar_path = (out / "shrunk_avatar.obj").string();
-  copy_material_files(scene.avatar_document, options.out_dir);
-  write_obj(run.avatar_path, scene.avatar_document, positions);
+  run.avatar_path = folder.final_path("shrunk_avatar.obj");
+  const std::vector<std::string> warnings =
+      copy_material_files(scene.avatar_document, out.string(), options.allow_external_assets);
+  if (!warnings.empty()) report["warnings"] = warnings;
+  write_obj((out / "shrunk_avatar.obj").string(), scene.avatar_document, positions);
 
   run.found = true;
   report["found"] = true;
@@ -175,7 +198,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   report["avatar_vertices"] = avatar.vertices.rows();
   report["certifications"] = run.shrink.certifications;
   report["shrink_seconds"] = run.shrink.seconds;
-  write_report();
+  write_report_and_commit();
   run.message = options.mode == ShrinkMode::kLevelset
                     ? fmt::format(
                           "shrunk avatar certified free of the garment at depth {:.4g} "

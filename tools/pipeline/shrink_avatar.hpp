@@ -5,6 +5,7 @@
 
 #include "shrink/common/progress.hpp"
 #include "shrink/shrunk_avatar/shrink_result.hpp"
+#include "tools/pipeline/run_control.hpp"
 #include "tools/pipeline/scene.hpp"
 
 namespace gr {
@@ -52,6 +53,9 @@ struct ShrinkRunOptions {
   ShrinkMode mode = ShrinkMode::kLevelset;
   double voxel_size = 0.01;   ///< normalized scene units (the body is about 2 tall)
   ProgressCallback progress;  ///< optional
+  RunLimits limits;           ///< input sizes, faces, memory and time the run may take
+  /// Copy material files and textures that symbolic links lead to outside the OBJ's folder.
+  bool allow_external_assets = false;
 };
 
 struct ShrinkRunResult {
@@ -69,8 +73,11 @@ struct ShrinkRunResult {
 /// garment) and DIR/report.json (mode, depth, times, medial vertices, or the conflict when
 /// no shrink was found, with its position in the garment's frame). In skeleton mode without
 /// skin weights the avatar is bound first, with bind_skeleton's defaults (report `inferred`).
+/// Like retarget, the files are written into a staging folder swapped into place at the end
+/// (ResultFolder); a run that found no shrink keeps an earlier result at DIR.previous.
 /// @throw InputError for bad inputs (skeleton mode without skeletons, a non-positive voxel
-///        size), OutputError when out_dir cannot be written.
+///        size, inputs beyond options.limits), OutputError when out_dir cannot be written or
+///        another run holds it, RunStopped at the limits or a stop request.
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options);
 
 }  // namespace gr

@@ -5,9 +5,11 @@
 namespace gr {
 
 Certificate certify_garment(const std::string& garment_path, const std::string& avatar_path,
-                            const nlohmann::json& extra, const ValidationOptions& options) {
+                            const nlohmann::json& extra, const ValidationOptions& options,
+                            const std::string& recorded_garment_path) {
   Certificate c;
   c.validation = validate_files({garment_path}, avatar_path, options);
+  if (!recorded_garment_path.empty()) c.validation.garments.front().path = recorded_garment_path;
   c.json = validation_report(c.validation);
   c.json["kind"] = "certificate";
   c.json["extra"] = nlohmann::ordered_json(extra);

@@ -22,10 +22,13 @@ struct Certificate {
 /// frame (the avatar's input frame, as the pipeline writes its output).
 /// @param extra free-form JSON from the caller (input SHA-256s, parameters, versions),
 ///        stored under "extra" in the certificate unchanged.
+/// @param recorded_garment_path the garment's path as the certificate records it (the
+///        file's final place when it is read from a staging folder); empty: garment_path.
 /// @throw InputError when a file is missing, malformed or has no face.
 Certificate certify_garment(const std::string& garment_path, const std::string& avatar_path,
                             const nlohmann::json& extra = nlohmann::json::object(),
-                            const ValidationOptions& options = {});
+                            const ValidationOptions& options = {},
+                            const std::string& recorded_garment_path = {});
 
 /// Writes `certificate.json` (any path) atomically.
 /// @throw OutputError when the file cannot be written.
