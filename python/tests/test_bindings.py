@@ -71,3 +71,28 @@ def test_batch_records_each_job_and_reuses_certified_ones(manifest, batch_out):
     rows = {row["id"]: row for row in again["jobs"]}
     assert rows["dress"]["reused"] == "yes"
     assert os.stat(batch_out / "dress" / "garment.obj").st_mtime_ns == before
+
+
+def test_a_timeout_ends_the_call_with_its_status_and_no_result(scene, tmp_path):
+    result = gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "late",
+                         no_fit=scene / "no-fit.txt", timeout=0.05)
+    assert result["exit_code"] == 9
+    assert result["status"] == "limit_reached"
+    assert not (tmp_path / "late").exists()
+
+
+def test_ctrl_c_stops_a_running_call_and_raises_keyboard_interrupt(scene, tmp_path):
+    import signal
+    import threading
+
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "stopped",
+                        no_fit=scene / "no-fit.txt", quality="accurate", threads=1)
+    finally:
+        timer.cancel()
+    assert not (tmp_path / "stopped").exists()
+    # Python's own handler is back: the next Ctrl-C raises in Python as usual.
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler

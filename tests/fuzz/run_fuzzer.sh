@@ -11,12 +11,12 @@ seconds="$2"
 mkdir -p "$build/corpus" "$build/artifacts"
 
 binary="$build/fuzz_parsers"
-sources=("$here/fuzz_parsers.cpp" "$root"/core/io/text_file.cpp "$root"/core/io/obj_document.cpp
-         "$root"/core/io/rig_files.cpp "$root"/core/io/atomic_file.cpp "$root"/core/common/errors.cpp)
+sources=("$here/fuzz_parsers.cpp" "$root"/core/io/*.cpp "$root"/core/mesh/*.cpp
+         "$root"/core/common/*.cpp)
 newest_source="$(ls -t "${sources[@]}" "$root"/core/io/*.hpp | head -n 1)"
 if [ ! -x "$binary" ] || [ "$newest_source" -nt "$binary" ]; then
   clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -I"$root" -isystem /usr/include/eigen3 -DGR_VERSION='"fuzz"' "${sources[@]}" -lfmt -o "$binary"
+    -I"$root" -isystem /usr/include/eigen3 -DGR_VERSION='"fuzz"' "${sources[@]}" -lfmt -ltinygltf -o "$binary"
 fi
 cp -n "$here"/corpus/* "$build/corpus/" 2>/dev/null || true
 status=0

@@ -60,9 +60,10 @@ TEST_CASE("shrink command writes a certified shrunk avatar over the garment", "[
 }
 
 TEST_CASE("shrink command exits 3 and names the conflict when no shrink exists", "[cli][shrink]") {
-  const auto out = gr::test::fresh_temp_dir("shrink_no_valid");
+  const auto dir = gr::test::fresh_temp_dir("shrink_no_valid");
+  const auto out = dir / "out";
   // A sheet through the middle of the dress form: no erosion frees it.
-  const std::string sheet = (out / "sheet.obj").string();
+  const std::string sheet = (dir / "sheet.obj").string();
   {
     std::ofstream obj(sheet);
     obj << "v -1 0.8 -1\nv 2 0.8 -1\nv 2 0.8 1\nv -1 0.8 1\nf 1 2 3\nf 1 3 4\n";

@@ -112,14 +112,17 @@ ResultFolder::ResultFolder(const std::string& out_dir, const std::vector<std::st
   }
 
   const fs::path parent = absolute_.parent_path();
-  prepare_output_folder(parent.string());
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent))
+    throw OutputError(fmt::format("{}: cannot create output folder{}", out_dir,
+                                  ec ? ": " + ec.message() : std::string()));
   lock_path_ = parent / ("." + name + ".lock");
   lock_fd_ = lock_file(lock_path_);
   if (lock_fd_ < 0)
     throw OutputError(fmt::format("{}: another run is writing this folder now (lock {})", out_dir,
                                   lock_path_.string()));
 
-  std::error_code ec;
   if (fs::exists(absolute_, ec)) {
     if (!fs::is_directory(absolute_, ec))
       throw InputError(out_dir, 0, "the output path exists and is not a folder");

@@ -141,3 +141,25 @@ TEST_CASE("batch records a job whose process crashes and goes on", "[batch][cli]
     CHECK_THAT(row[12], Catch::Contains("killed by signal 11"));
   }
 }
+
+TEST_CASE("batch passes each job's limits to it", "[batch][cli][limits]") {
+  const fs::path dir = gr::test::fresh_temp_dir("batch_limits");
+  const std::string scene = gr::test::project_file("tools/scenes/dress_form");
+  const std::string inputs = "\"garment\": \"" + scene + "/garment.obj\", \"avatar\": \"" + scene +
+                             "/avatar.obj\", \"no_fit\": \"" + scene + "/no-fit.txt\"";
+  std::ofstream(dir / "manifest.jsonl")
+      << "{\"id\": \"late\", " << inputs << ", \"timeout\": 0.05}\n"
+      << "{\"id\": \"large\", " << inputs << ", \"max_faces\": 100}\n"
+      << "{\"id\": \"fine\", " << inputs << ", \"quality\": \"fast\", \"timeout\": 600}\n";
+  const fs::path out = dir / "out";
+  const gr::test::CliRun run = run_cli(
+      {"batch", (dir / "manifest.jsonl").string(), "--out", out.string(), "--quiet"}, "limits");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 8);
+  CHECK(summary_row(out, "late")[1] == "limit_reached");
+  CHECK(summary_row(out, "large")[1] == "bad_input");
+  CHECK(summary_row(out, "fine")[1] == "certified");
+  // The stopped job left its log and record, and no result of its own.
+  CHECK(fs::is_regular_file(out / "late" / "job.json"));
+  CHECK_FALSE(fs::exists(out / "late" / "garment.obj"));
+}
