@@ -48,8 +48,15 @@ std::vector<bool> fit_face_mask(const Eigen::Ref<const MatrixX3i>& faces, int ve
 }
 
 FitEnergy::FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit,
-                     const DistanceField& field, int samples_per_face, const DofLayout& layout)
-    : field_(&field), quadrature_(TriangleQuadrature::with_points(samples_per_face)) {
+                     const DistanceField& field, int samples_per_face, const DofLayout& layout,
+                     const std::vector<double>& offsets)
+    : offsets_(offsets),
+      field_(&field),
+      quadrature_(TriangleQuadrature::with_points(samples_per_face)) {
+  if (!offsets_.empty() && offsets_.size() != static_cast<std::size_t>(rest.vertices.rows()))
+    throw std::invalid_argument("fit offsets: " + std::to_string(offsets_.size()) +
+                                " values for " + std::to_string(rest.vertices.rows()) +
+                                " garment vertices");
   const std::vector<bool> fits =
       fit_face_mask(rest.faces, static_cast<int>(rest.vertices.rows()), no_fit);
   std::vector<StencilDofs<kStencilSize>> dofs;
@@ -98,6 +105,7 @@ const std::vector<FitEnergy::Sample>& FitEnergy::samples_at(
 double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, const Sample* samples,
                           LocalVector* g, LocalMatrix* h, bool project_psd) const {
   const double area = rest_areas_[static_cast<std::size_t>(face)];
+  const auto& corners = faces_[static_cast<std::size_t>(face)];
   double value = 0.0;
   for (std::size_t q = 0; q < quadrature_.weights.size(); ++q) {
     const Vector3d& b = quadrature_.barycentric[q];
@@ -106,16 +114,19 @@ double FitEnergy::element(int face, const Eigen::Ref<const MatrixX3d>& V, const 
       fresh.phi = field_->evaluate(point(face, q, V), g || h ? &fresh.gradient : nullptr,
                                    h ? &fresh.hessian : nullptr);
     const Sample& sample = samples ? samples[q] : fresh;
-    const double phi = sample.phi;
-    if (phi <= 0.0) continue;
+    double target = 0.0;
+    if (!offsets_.empty())
+      for (int v = 0; v < 3; ++v) target += b[v] * offsets_[static_cast<std::size_t>(corners[v])];
+    const double r = sample.phi - target;
+    if (target <= 0.0 && r <= 0.0) continue;
     const Vector3d& grad_phi = sample.gradient;
     const double w = area * quadrature_.weights[q];
-    value += w * phi * phi;
+    value += w * r * r;
     if (g)
-      for (int v = 0; v < 3; ++v) g->segment<3>(3 * v) += 2.0 * w * phi * b[v] * grad_phi;
+      for (int v = 0; v < 3; ++v) g->segment<3>(3 * v) += 2.0 * w * r * b[v] * grad_phi;
     if (h) {
       Eigen::Matrix3d point_hessian =
-          2.0 * w * (grad_phi * grad_phi.transpose() + phi * sample.hessian);
+          2.0 * w * (grad_phi * grad_phi.transpose() + r * sample.hessian);
       if (project_psd) point_hessian = project_to_psd(point_hessian);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) h->block<3, 3>(3 * i, 3 * j) += b[i] * b[j] * point_hessian;

@@ -28,12 +28,16 @@ std::vector<bool> fit_face_mask(const Eigen::Ref<const MatrixX3i>& faces, int ve
                                 const std::vector<int>& no_fit);
 
 /// L_fit (unweighted): sum over fit faces f and quadrature points p of
-/// rest_area_f · weight_p · max(phi(p), 0)^2, phi the avatar's signed distance (positive
-/// outside). A face is no-fit, and left out, when its three vertices are all listed.
+/// rest_area_f · weight_p · r(p)^2 with r = phi(p) - d(p), phi the avatar's signed distance
+/// (positive outside) and d the point's target distance from the avatar: the barycentric
+/// mean of its face's per-vertex offsets (0 without offsets). A point with d > 0 is held at
+/// its distance from both sides (the garment keeps its ease); a point with d = 0 is only
+/// pulled in (r > 0), as the barrier keeps it outside. A face is no-fit, and left out,
+/// when its three vertices are all listed.
 /// Units: area × length^2 in normalized scene units; the caller multiplies by w_fit.
-/// The Hessian at a point with phi > 0 is 2 (∇phi ∇phiᵀ + phi ∇²phi) ⊗ (b bᵀ) for the
-/// point's barycentric weights b; with `project_psd` the 3×3 factor is projected to PSD
-/// (then the Kronecker product, and the face's sum, are PSD too).
+/// The Hessian at a point it counts is 2 (∇phi ∇phiᵀ + r ∇²phi) ⊗ (b bᵀ) for the point's
+/// barycentric weights b; with `project_psd` the 3×3 factor is projected to PSD (then the
+/// Kronecker product, and the face's sum, are PSD too).
 /// The distance field is sampled once per point for the gradient and the Hessian: the
 /// samples (value, gradient, Hessian of phi) taken for one are kept for the other, and for
 /// the value, while the positions stay the same (the solver asks for all three at each
@@ -48,9 +52,12 @@ class FitEnergy : public EnergyTerm {
   /// @param no_fit garment vertex ids (any order, repeats allowed).
   /// @param field must outlive this object; called from many threads at once.
   /// @param samples_per_face 1, 3 or 6.
-  /// @throw std::invalid_argument for another sample count.
+  /// @param offsets per garment vertex (#Vg, normalized units, >= 0): the distance from the
+  ///        avatar the fit holds it at; empty: 0 everywhere (the tight fit).
+  /// @throw std::invalid_argument for another sample count, or offsets of another size.
   FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit, const DistanceField& field,
-            int samples_per_face, const DofLayout& layout);
+            int samples_per_face, const DofLayout& layout,
+            const std::vector<double>& offsets = {});
 
   /// Number of faces that fit (not no-fit).
   int fit_face_count() const { return static_cast<int>(faces_.size()); }
@@ -83,6 +90,7 @@ class FitEnergy : public EnergyTerm {
 
   std::vector<std::array<int, 3>> faces_;
   std::vector<double> rest_areas_;
+  std::vector<double> offsets_;  ///< per garment vertex; empty: all 0
   const DistanceField* field_;
   TriangleQuadrature quadrature_;
   StencilAssembly<kStencilSize> assembly_;

@@ -70,7 +70,7 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
   }
   if (stage == Stage::kFit)
     add_term<FitEnergy>(parameters.w_fit, scene.garment, scene.no_fit, *scene.distance_field,
-                        parameters.fit_samples_per_face, layout_);
+                        parameters.fit_samples_per_face, layout_, scene.fit_offsets);
   constraint_.displacement_sq = (scene.avatar.vertices - scene.shrunk_avatar).squaredNorm();
   constraint_.lambda1 = parameters.initial_lambda1;
   if (layout_.t_free) add_term<AvatarConstraintTerm>(1.0, constraint_, layout_);

@@ -37,6 +37,9 @@ struct GarmentScene {
   std::optional<SkeletonMotion> skeletons;  ///< L_pos only when given
   std::vector<int> no_fit;                  ///< garment vertex ids
   const DistanceField* distance_field = nullptr;  ///< the avatar's SDF; needed by the fit
+  /// Per garment vertex, the distance from the avatar the fit holds it at (normalized
+  /// units, FitEnergy's offsets); empty: the tight fit, onto the avatar.
+  std::vector<double> fit_offsets;
 };
 
 /// The objective of Step 2 (inflation: x = [t, Vg], L_surf + L_contact + L_pos + the AL on

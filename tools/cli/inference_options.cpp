@@ -6,8 +6,9 @@ namespace gr {
 
 void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options) {
   command.add_option("--source-body", inputs.source_body,
-                     "The body the garment was made on (OBJ, in the garment's frame): the "
-                     "no-fit list is inferred from it when --no-fit is not given");
+                     "The body the garment was made on (OBJ, in the garment's frame): it gives "
+                     "the garment's ease, which the fit keeps (see --fit), and the no-fit list "
+                     "is inferred from it when --no-fit is not given");
   command
       .add_option_function<std::string>(
           "--binding",

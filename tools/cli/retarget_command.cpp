@@ -27,6 +27,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
   // Named on the command line, parsed into the typed options when the command runs.
   auto shrink_mode = std::make_shared<std::string>();
   auto quality = std::make_shared<std::string>(to_string(options->quality));
+  auto fit_mode = std::make_shared<std::string>();
   CLI::App* cmd = root.add_subcommand(
       "retarget", "Refit a garment onto an avatar, then certify the written garment.");
   add_scene_options(*cmd, options->inputs, options->out_dir);
@@ -61,6 +62,12 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
                   "parameters")
       ->check(CLI::IsMember({"fast", "balanced", "accurate"}))
       ->capture_default_str();
+  cmd->add_option("--fit", *fit_mode,
+                  "ease: hold each fitted vertex at its distance to the source body (scaled as the "
+                  "garment is) from the avatar, so the garment keeps its ease; tight: pull the "
+                  "garment onto the avatar (the paper's fit). Default: ease with --source-body, "
+                  "else tight")
+      ->check(CLI::IsMember({"ease", "tight"}));
   auto& o = options->overrides;
   const char* units = " (normalized scene units: the avatar is about 2 tall)";
   cmd->add_option("--dhat", o.dhat, std::string("Barrier support distance") + units)
@@ -154,8 +161,9 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "4 solver failure, 5 output not writable, 6 internal error, 7 certified and written\n"
       "but the garment's shape changed beyond the shape thresholds, 9 --timeout or\n"
       "--max-memory-mb reached, 10 interrupted (Ctrl-C, SIGTERM).");
-  cmd->callback([options, shrink_mode, quality, &exit_code]() {
+  cmd->callback([options, shrink_mode, quality, fit_mode, &exit_code]() {
     if (!shrink_mode->empty()) options->shrink_mode = parse_shrink_mode(*shrink_mode);
+    if (!fit_mode->empty()) options->fit_mode = parse_fit_mode(*fit_mode);
     options->quality = parse_quality(*quality);
     RetargetResult result;
     try {

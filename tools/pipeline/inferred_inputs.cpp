@@ -113,6 +113,14 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
   return weights;
 }
 
+TriangleMesh read_source_body(const std::string& path, const NormalizedScene& normalized) {
+  const SimulationMesh read = make_simulation_mesh(read_obj(path));
+  if (read.mesh.faces.rows() == 0)
+    throw InputError(path, 0, "source body has no (non-degenerate) triangle");
+  return {normalized.normalization.garment_to_scene.apply_rows(read.mesh.vertices),
+          read.mesh.faces};
+}
+
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
                                 bool list_given, const std::string& source_body_path, bool skirt,
                                 const std::string& out_dir, const InferenceOptions& options,
@@ -129,13 +137,7 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
   }
   require_root_joint(options, normalized);
   std::optional<TriangleMesh> body;
-  if (!source_body_path.empty()) {
-    const SimulationMesh read = make_simulation_mesh(read_obj(source_body_path));
-    if (read.mesh.faces.rows() == 0)
-      throw InputError(source_body_path, 0, "source body has no (non-degenerate) triangle");
-    body = TriangleMesh{normalized.normalization.garment_to_scene.apply_rows(read.mesh.vertices),
-                        read.mesh.faces};
-  }
+  if (!source_body_path.empty()) body = read_source_body(source_body_path, normalized);
   report.no_fit_inferred = true;
   report.no_fit_options = options.no_fit;
   report.no_fit = infer_no_fit(garment, body ? &*body : nullptr,

@@ -58,6 +58,11 @@ nlohmann::json to_json(const InferenceReport& report);
 Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScene& normalized,
                                         const InferenceOptions& options, InferenceReport& report);
 
+/// The body the garment was made on (an OBJ in the garment's frame, welded), placed in the
+/// normalized scene by the garment's normalization.
+/// @throw InputError when it cannot be read or has no (non-degenerate) triangle.
+TriangleMesh read_source_body(const std::string& path, const NormalizedScene& normalized);
+
 /// The no-fit list a run uses, as welded garment vertex ids: the scene's when one was given
 /// (its file named in ScenePaths::no_fit), else inferred (from `source_body_path` when not
 /// empty, an OBJ in the garment's frame) and written to `out_dir`/no-fit.txt as 0-based

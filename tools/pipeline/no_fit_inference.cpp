@@ -6,6 +6,7 @@
 
 #include "core/energies/fit_energy.hpp"
 #include "core/mesh/boundary_loops.hpp"
+#include "core/mesh/vertex_neighbours.hpp"
 #include "core/skeleton/loop_bones.hpp"
 #include "shrink/binding/voxel_binding.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
@@ -15,21 +16,6 @@ namespace gr {
 namespace {
 
 using Adjacency = std::vector<std::vector<int>>;
-
-Adjacency vertex_neighbours(const TriangleMesh& mesh) {
-  Adjacency neighbours(static_cast<std::size_t>(mesh.vertices.rows()));
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int a = mesh.faces(f, c), b = mesh.faces(f, (c + 1) % 3);
-      neighbours[static_cast<std::size_t>(a)].push_back(b);
-      neighbours[static_cast<std::size_t>(b)].push_back(a);
-    }
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
-  return neighbours;
-}
 
 /// Connected regions of the vertices where `member` holds, over garment edges: a region id
 /// per vertex (-1 outside) and the region count.

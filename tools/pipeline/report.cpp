@@ -1,5 +1,7 @@
 #include "tools/pipeline/report.hpp"
 
+#include <cmath>
+
 #include <sys/resource.h>
 
 namespace gr {
@@ -115,6 +117,31 @@ nlohmann::json to_json(const RetargetReport& r) {
                     {"inpainted_vertices", r.skin.inpainted},
                     {"unreached_vertices", r.skin.unreached},
                     {"seconds", r.skin.seconds}};
+  const EaseReport& ease = r.ease;
+  nlohmann::json per_vertex = nlohmann::json::array();
+  for (const double ratio : ease.document_ratio)
+    per_vertex.push_back(std::isfinite(ratio) ? nlohmann::json(ratio) : nlohmann::json(nullptr));
+  report["ease"] = {
+      {"fit", to_string(ease.fit)},
+      {"source", ease.source_known ? "source body" : "none"},
+      {"filled_vertices", ease.filled_vertices},
+      {"distance_band", ease.distance_band},
+      {"max_offset", ease.max_offset},
+      {"scale",
+       {{"min", ease.targets.min_scale},
+        {"median", ease.targets.median_scale},
+        {"max", ease.targets.max_scale}}},
+      {"capped_vertices", ease.targets.capped},
+      {"measured_vertices", ease.measure.vertices},
+      {"garment_scale", ease.measure.scale},
+      {"median_ratio", ease.measure.median_ratio},
+      {"mean_error", ease.measure.mean_error},
+      {"within_25_percent", ease.measure.within_25_percent},
+      {"per_vertex_ratio", per_vertex},
+      {"meaning",
+       "ease: a fitted vertex's distance to the body. ratio: on the written garment, its "
+       "distance to the avatar over the garment's median edge ratio, against its distance to "
+       "the source body; per_vertex_ratio in OBJ vertex order, null where not measured"}};
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;
 }

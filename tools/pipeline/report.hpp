@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tools/pipeline/ease.hpp"
 #include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/parameters.hpp"
@@ -28,6 +29,19 @@ struct SkinTransferReport {
   int inpainted = 0;  ///< vertices filled in by the Laplacian solve
   int unreached = 0;  ///< of matched: in a part with no match, taken without the thresholds
   double seconds = 0.0;
+};
+
+/// How the fit treated the garment's ease, and how much of it the written garment kept.
+struct EaseReport {
+  FitMode fit = FitMode::kTight;
+  bool source_known = false;  ///< a source body gave the source ease
+  int filled_vertices = 0;    ///< over a cut in the source body (SourceEase::filled)
+  double distance_band = 0.0; ///< how far out the fit reads the avatar's distance (normalized)
+  double max_offset = 0.0;    ///< the largest target the fit can hold (normalized)
+  EaseTargets targets;        ///< the fit's local scale; offsets left empty in the report
+  EaseMeasure measure;        ///< on the written garment; vertices 0 without a source body
+  /// Per garment document position (OBJ `v` order), the measured ratio; NaN where none.
+  std::vector<double> document_ratio;
 };
 
 /// What a retarget run did and measured; written as report.json.
@@ -87,6 +101,7 @@ struct RetargetReport {
   std::string previous_result;
 
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
+  EaseReport ease;
 
   bool certified = false;
   std::vector<std::string> warnings;

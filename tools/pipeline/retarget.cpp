@@ -232,12 +232,54 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
   return normalized;
 }
 
+/// The ease fit reads the avatar's distance this far out at most (normalized units): twice
+/// the ease of a roomy coat's fitted vertices on the shared source bodies.
+constexpr double kMaxEaseBand = 0.3;
+
+/// The fit mode, and the garment's ease on its source body when one is given. The distance
+/// band the fit reads is widened to reach every target (ease up to twice the largest
+/// source ease of a fitted vertex).
+SourceEase ease_stage(Run& run, const Inputs& in) {
+  EaseReport& ease = run.report().ease;
+  const std::string& body_path = run.options.inputs.source_body;
+  ease.source_known = !body_path.empty();
+  ease.fit = run.options.fit_mode.value_or(ease.source_known ? FitMode::kEase : FitMode::kTight);
+  const double voxel = run.parameters().voxel_size;
+  ease.distance_band = kDistanceBand;
+  ease.max_offset = 0.0;
+  if (!ease.source_known) {
+    if (ease.fit == FitMode::kEase)
+      throw InputError(run.options.inputs.garment, 0,
+                       "--fit ease needs the garment's source body (--source-body)");
+    run.warn(
+        "no --source-body: the fit pulls the garment onto the avatar (tight); give the body "
+        "the garment was made on to keep its ease");
+    return {};
+  }
+  const TriangleMesh body = read_source_body(body_path, in.normalized);
+  SourceEase source = measure_source_ease(in.normalized.garment, body);
+  ease.filled_vertices = source.filled;
+  if (ease.fit == FitMode::kTight) return source;
+  std::vector<bool> listed(source.distance.size(), false);
+  for (const int v : in.scene.no_fit) listed[static_cast<std::size_t>(v)] = true;
+  double largest = 0.0;
+  for (std::size_t v = 0; v < source.distance.size(); ++v)
+    if (!listed[v]) largest = std::max(largest, source.distance[v]);
+  constexpr double kBandVoxels = 4.0;  // the interpolant reads 2 voxels each side
+  ease.distance_band = std::clamp(2.0 * largest + kBandVoxels * voxel, kDistanceBand, kMaxEaseBand);
+  ease.max_offset = ease.distance_band - kBandVoxels * voxel;
+  run.progress.log("fit", "ease from the source body: largest {:.4g}, {} vertices over cuts, "
+                   "distance band {:.3g}", largest, source.filled, ease.distance_band);
+  return source;
+}
+
 /// The avatar's signed distance near its surface: read by the fit, and by the level-set
 /// shrink (which builds a full-depth grid itself when it must erode deeper).
 SignedDistanceGrid distance_grid_stage(Run& run, const TriangleMesh& avatar) {
   const StageTimer timer;
   SignedDistanceGrid grid = with_stop_hook(run.control, [&](const ProgressCallback& hook) {
-    return build_distance_grid(avatar, run.parameters().voxel_size, hook);
+    return build_distance_grid(avatar, run.parameters().voxel_size, hook,
+                               run.report().ease.distance_band);
   });
   run.progress.log("shrink", "signed distance: {} voxels of {:.4g} in {:.2f} s",
                    grid.active_voxel_count(), run.parameters().voxel_size, timer.seconds());
@@ -595,6 +637,23 @@ void shape_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
              " (see --shape-check and the --max-* shape options)");
 }
 
+/// Ease: how much of its source ease the written garment kept.
+void ease_measure_stage(Run& run, const Inputs& in, const std::vector<bool>& fit_faces,
+                        const MatrixX3d& garment, const SourceEase& source) {
+  EaseReport& ease = run.report().ease;
+  ease.measure = measure_ease(in.normalized.garment, garment, in.normalized.avatar, source,
+                              fit_faces, run.parameters().solver.dhat);
+  const std::vector<int>& obj_to_sim = in.scene.garment.obj_to_sim;
+  ease.document_ratio.assign(obj_to_sim.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t p = 0; p < obj_to_sim.size(); ++p)
+    if (obj_to_sim[p] >= 0)
+      ease.document_ratio[p] = ease.measure.ratio[static_cast<std::size_t>(obj_to_sim[p])];
+  run.progress.log("ease", "{} fit: ratio to the source ease median {:.3f}, mean error {:.3f}, "
+                   "{:.1f}% of {} vertices within 25%", to_string(ease.fit),
+                   ease.measure.median_ratio, ease.measure.mean_error,
+                   100.0 * ease.measure.within_25_percent, ease.measure.vertices);
+}
+
 /// Measure: fit error of the written garment; the one-line summary.
 std::string measure_stage(Run& run, const Inputs& in, const std::vector<bool>& fit_faces,
                           const MatrixX3d& garment, const Certificate& certificate,
@@ -662,6 +721,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                      report.inferred.no_fit.method, report.inferred.no_fit.vertices.size(),
                      report.inferred.no_fit_faces, report.inferred.no_fit_path);
   }
+  const SourceEase source_ease = ease_stage(run, in);
   control.check("read");
 
   const StageTimer shrink_timer;
@@ -718,12 +778,22 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                   "inflation failed: " + inflation.message +
                       "; allow more work with --max-al-rounds and --max-newton-iterations, or "
                       "widen the barrier with --dhat");
+  if (report.ease.fit == FitMode::kEase) {
+    EaseTargets targets = ease_targets(in.normalized.garment, inflation.garment, source_ease,
+                                       report.ease.max_offset);
+    solver.scene.fit_offsets = std::move(targets.offsets);
+    report.ease.targets = std::move(targets);
+    run.progress.log("fit", "ease kept: local scale {:.3g} to {:.3g} (median {:.3g}), {} targets "
+                     "capped", report.ease.targets.min_scale, report.ease.targets.max_scale,
+                     report.ease.targets.median_scale, report.ease.targets.capped);
+  }
   const FitResult fit = fit_stage(run, solver, inflation.garment);
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(fit.solve.gradient_norm))
     return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
 
   write_stage(run, in, fit.garment);
   shape_stage(run, in, fit.garment);
+  if (report.ease.source_known) ease_measure_stage(run, in, solver.fit_faces, fit.garment, source_ease);
   const Certificate certificate = certify_stage(run);
   std::string summary =
       measure_stage(run, in, solver.fit_faces, fit.garment, certificate, total.seconds());

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/skinning/skin_weight_transfer.hpp"
+#include "tools/pipeline/ease.hpp"
 #include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/report.hpp"
@@ -21,6 +22,8 @@ struct RetargetOptions {
   std::optional<ShrinkMode>
       shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
   Quality quality = Quality::kBalanced;
+  /// unset: ease when the source ease is known (inputs.source_body), else tight
+  std::optional<FitMode> fit_mode;
   ParameterOverrides overrides;  ///< individual knobs over the preset
   /// Skin weights and no-fit list inferred when inputs.skin_weights / inputs.no_fit are empty.
   InferenceOptions inference;

@@ -1,5 +1,6 @@
 #include "tools/pipeline/shrink_avatar.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -52,9 +53,9 @@ ShrinkMode parse_shrink_mode(const std::string& name) {
 }
 
 SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_size,
-                                       const ProgressCallback& progress) {
+                                       const ProgressCallback& progress, double exterior_band) {
   SignedDistanceOptions options;
-  options.exterior_band = kDistanceBand;
+  options.exterior_band = std::max(kDistanceBand, exterior_band);
   options.full_depth = false;
   options.progress = progress;
   return build_signed_distance(avatar, voxel_size, options);

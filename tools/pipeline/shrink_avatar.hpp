@@ -28,9 +28,11 @@ ShrinkMode parse_shrink_mode(const std::string& name);
 constexpr double kDistanceBand = 0.1;
 
 /// The avatar's signed distance as the pipeline builds it: a narrow band of kDistanceBand
-/// on both sides of the surface.
+/// inside the surface, and of `exterior_band` (at least kDistanceBand) outside, where the
+/// fit reads it.
 SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_size,
-                                       const ProgressCallback& progress = {});
+                                       const ProgressCallback& progress = {},
+                                       double exterior_band = kDistanceBand);
 
 /// Shrinks the normalized avatar until it is certified free of the garment.
 /// @param grid the avatar's signed distance (build_distance_grid); read in levelset mode

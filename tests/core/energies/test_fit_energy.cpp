@@ -48,6 +48,50 @@ TEST_CASE("fit energy: gradient and Hessian match finite differences",
   test::check_position_energy(energy, x, 1e-5);
 }
 
+TEST_CASE("fit energy with ease offsets: gradient and Hessian match finite differences",
+          "[energies][fit][ease][grad][hess]") {
+  const int samples = GENERATE(1, 3, 6);
+  CAPTURE(samples);
+  // Points both nearer and farther than their targets, and some targets of 0.
+  const TriangleMesh rest = test::icosphere(1, 1.05);
+  const test::SphereField field(Vector3d(0.1, 0.0, 0.0), 1.0);
+  const DofLayout layout{static_cast<int>(rest.vertices.rows())};
+  std::vector<double> offsets(static_cast<std::size_t>(rest.vertices.rows()));
+  for (std::size_t v = 0; v < offsets.size(); ++v) offsets[v] = v % 4 == 0 ? 0.0 : 0.01 * (v % 9);
+  const FitEnergy energy(rest, {}, field, samples, layout, offsets);
+  std::srand(12);
+  const Eigen::VectorXd x =
+      test::flatten(rest.vertices) + 0.02 * Eigen::VectorXd::Random(rest.vertices.size());
+  test::check_position_energy(energy, x, 1e-5);
+}
+
+TEST_CASE("fit energy with ease offsets holds a face at its distance from both sides",
+          "[energies][fit][ease]") {
+  TriangleMesh face;
+  face.vertices.resize(3, 3);
+  face.vertices << 0, 0, 0.5, 1, 0, 0.5, 0, 1, 0.5;
+  face.faces.resize(1, 3);
+  face.faces << 0, 1, 2;
+  const double R = 1e6;  // phi = z - 0.2 near the face
+  const test::SphereField field(Vector3d(0.25, 0.25, 0.2 - R), R);
+  const FitEnergy energy(face, {}, field, 3, DofLayout{3}, {0.1, 0.1, 0.1});
+  // phi = 0.3 against a target of 0.1: 0.5 · 0.2².
+  CHECK(energy.value(face.vertices, 1.0) == Approx(0.5 * 0.04).epsilon(1e-6));
+  MatrixX3d at_target = face.vertices;
+  at_target.col(2).array() -= 0.2;
+  CHECK(energy.value(at_target, 1.0) == Approx(0.0).margin(1e-12));
+  // Nearer than its target, the face is pushed back out; a tight fit would leave it.
+  MatrixX3d nearer = face.vertices;
+  nearer.col(2).array() -= 0.25;
+  CHECK(energy.value(nearer, 1.0) == Approx(0.5 * 0.05 * 0.05).epsilon(1e-6));
+  const FitEnergy tight(face, {}, field, 3, DofLayout{3});
+  CHECK(tight.value(nearer, 1.0) == Approx(0.5 * 0.05 * 0.05).epsilon(1e-6));
+  nearer.col(2).array() -= 0.1;  // inside: phi = -0.05
+  CHECK(tight.value(nearer, 1.0) == 0.0);
+  CHECK(energy.value(nearer, 1.0) == Approx(0.5 * 0.15 * 0.15).epsilon(1e-6));
+  CHECK_THROWS_AS(FitEnergy(face, {}, field, 3, DofLayout{3}, {0.1}), std::invalid_argument);
+}
+
 TEST_CASE("fit energy: zero inside the avatar; the exact value on a flat face", "[energies][fit]") {
   TriangleMesh face;
   face.vertices.resize(3, 3);
