@@ -50,13 +50,11 @@ std::vector<bool> fit_face_mask(const Eigen::Ref<const MatrixX3i>& faces, int ve
 FitEnergy::FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit,
                      const DistanceField& field, int samples_per_face, const DofLayout& layout,
                      const std::vector<double>& offsets)
-    : offsets_(offsets),
-      field_(&field),
+    : offsets_(offsets), field_(&field),
       quadrature_(TriangleQuadrature::with_points(samples_per_face)) {
   if (!offsets_.empty() && offsets_.size() != static_cast<std::size_t>(rest.vertices.rows()))
-    throw std::invalid_argument("fit offsets: " + std::to_string(offsets_.size()) +
-                                " values for " + std::to_string(rest.vertices.rows()) +
-                                " garment vertices");
+    throw std::invalid_argument("fit offsets: " + std::to_string(offsets_.size()) + " values for " +
+                                std::to_string(rest.vertices.rows()) + " garment vertices");
   const std::vector<bool> fits =
       fit_face_mask(rest.faces, static_cast<int>(rest.vertices.rows()), no_fit);
   std::vector<StencilDofs<kStencilSize>> dofs;

@@ -56,8 +56,7 @@ class FitEnergy : public EnergyTerm {
   ///        avatar the fit holds it at; empty: 0 everywhere (the tight fit).
   /// @throw std::invalid_argument for another sample count, or offsets of another size.
   FitEnergy(const TriangleMesh& rest, const std::vector<int>& no_fit, const DistanceField& field,
-            int samples_per_face, const DofLayout& layout,
-            const std::vector<double>& offsets = {});
+            int samples_per_face, const DofLayout& layout, const std::vector<double>& offsets = {});
 
   /// Number of faces that fit (not no-fit).
   int fit_face_count() const { return static_cast<int>(faces_.size()); }

@@ -1,6 +1,6 @@
 // One browser check of a report page, in Debian's headless Chromium driven by playwright-core.
 //
-//   node check_report_page.mjs --page FILE --check console|network|canvas|garment-pixels
+//   node check_report_page.mjs --page FILE --check console|network|canvas|garment-pixels|ease-pixels
 //                              [--screenshot OUT.png]
 //
 // Exits 0 when the check passes, 1 with the reason when it fails. The page is opened from
@@ -208,38 +208,55 @@ const checks = {
 
   // In a screenshot, garment vertices seen from the camera show the colour they were given.
   async 'garment-pixels'(browser, url, options) {
-    const { page } = await openReport(browser, url);
-    const count = await page.evaluate(() => window.grView.shapeCount);
-    const summary = [];
-    for (let shape = 0; shape < count; ++shape) {
-      await page.evaluate((s) => window.grView.setShape(s), shape);
-      const probes = await page.evaluate(() => {
-        const out = [];
-        const n = window.grView.vertexCount(0);
-        const stride = Math.max(1, Math.floor(n / 600));
-        for (let v = 0; v < n; v += stride) {
-          const p = window.grView.probe(0, v);
-          if (p.visible && !p.flagged) out.push({ v, ...p });
-        }
-        return out;
-      });
-      const box = await page.locator('#gr-view canvas').boundingBox();
-      const inside = probes.filter((p) => p.x > box.x + 3 && p.y > box.y + 3 &&
-                                          p.x < box.x + box.width - 3 && p.y < box.y + box.height - 3);
-      expect(inside.length >= 10, `shape ${shape}: only ${inside.length} garment vertices in view`);
-      const png = await page.screenshot();
-      if (options.screenshot) writeFileSync(options.screenshot.replace(/\.png$/, `_shape${shape}.png`), png);
-      const colours = await analysePngs(browser, [png], coloursAround, inside.map(({ x, y }) => ({ x, y })));
-      const misses = inside.filter((p, i) => !colours[i].some((c) => sameHue(c, p.colour)));
-      expect(misses.length <= 0.1 * inside.length,
-             `shape ${shape}: ${misses.length} of ${inside.length} garment points not in their colour, e.g. ` +
-             misses.slice(0, 3).map((p) => `vertex ${p.v} at (${p.x.toFixed(0)}, ${p.y.toFixed(0)}) wants ` +
-               `rgb(${p.colour}) sees rgb(${colours[inside.indexOf(p)][4]})`).join('; '));
-      summary.push(`shape ${shape}: ${inside.length - misses.length} of ${inside.length} points in their colour`);
-    }
-    return summary.join('; ');
+    return garmentPixels(browser, url, options, async () => {});
+  },
+
+  // The ease colour mode: the box switches the garment to the ease map and its legend.
+  async 'ease-pixels'(browser, url, options) {
+    return garmentPixels(browser, url, options, async (page) => {
+      expect(await page.locator('#gr-legend-ease').isHidden(), 'the ease legend shows before the box');
+      await page.locator('#gr-ease').check();
+      expect(await page.locator('#gr-legend-ease').isVisible(), 'the ease legend does not show');
+      expect(await page.locator('#gr-legend').isHidden(), 'the distance legend still shows');
+    });
   },
 };
+
+// Each shape's garment vertices in view are drawn in the colour the page gave them, after
+// `prepare(page)` has set the page up.
+async function garmentPixels(browser, url, options, prepare) {
+  const { page } = await openReport(browser, url);
+  await prepare(page);
+  const count = await page.evaluate(() => window.grView.shapeCount);
+  const summary = [];
+  for (let shape = 0; shape < count; ++shape) {
+    await page.evaluate((s) => window.grView.setShape(s), shape);
+    const probes = await page.evaluate(() => {
+      const out = [];
+      const n = window.grView.vertexCount(0);
+      const stride = Math.max(1, Math.floor(n / 600));
+      for (let v = 0; v < n; v += stride) {
+        const p = window.grView.probe(0, v);
+        if (p.visible && !p.flagged) out.push({ v, ...p });
+      }
+      return out;
+    });
+    const box = await page.locator('#gr-view canvas').boundingBox();
+    const inside = probes.filter((p) => p.x > box.x + 3 && p.y > box.y + 3 &&
+                                        p.x < box.x + box.width - 3 && p.y < box.y + box.height - 3);
+    expect(inside.length >= 10, `shape ${shape}: only ${inside.length} garment vertices in view`);
+    const png = await page.screenshot();
+    if (options.screenshot) writeFileSync(options.screenshot.replace(/\.png$/, `_shape${shape}.png`), png);
+    const colours = await analysePngs(browser, [png], coloursAround, inside.map(({ x, y }) => ({ x, y })));
+    const misses = inside.filter((p, i) => !colours[i].some((c) => sameHue(c, p.colour)));
+    expect(misses.length <= 0.1 * inside.length,
+           `shape ${shape}: ${misses.length} of ${inside.length} garment points not in their colour, e.g. ` +
+           misses.slice(0, 3).map((p) => `vertex ${p.v} at (${p.x.toFixed(0)}, ${p.y.toFixed(0)}) wants ` +
+             `rgb(${p.colour}) sees rgb(${colours[inside.indexOf(p)][4]})`).join('; '));
+    summary.push(`shape ${shape}: ${inside.length - misses.length} of ${inside.length} points in their colour`);
+  }
+  return summary.join('; ');
+}
 
 const options = parseArguments(process.argv.slice(2));
 const check = checks[options.check];

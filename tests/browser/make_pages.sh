@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fixture of the browser tests: the bundled scene's report page, made as
-# `tools/quickstart.sh run` makes it, and a `validate --html` page of its input garment
+# `tools/quickstart.sh run` makes it, the same with its source body (an ease fit), and a
+# `validate --html` page of its input garment
 # (which crosses the dress form, so that page has marked faces to show).
 #   make_pages.sh GARMENT_RETARGET SCENE_DIR OUT_DIR
 set -euo pipefail
@@ -9,10 +10,15 @@ rm -rf "$out"
 mkdir -p "$out"
 "$cli" retarget --garment "$scene/garment.obj" --avatar "$scene/avatar.obj" \
   --no-fit "$scene/no-fit.txt" --out "$out/dress_form" --quiet
+# With its source body the fit keeps the skirt's ease, and the page can colour by it.
+"$cli" retarget --garment "$scene/garment.obj" --avatar "$scene/avatar.obj" \
+  --no-fit "$scene/no-fit.txt" --source-body "$scene/source_body.obj" \
+  --out "$out/dress_form_ease" --quiet
 status=0
 "$cli" validate --garment "$scene/garment.obj" --avatar "$scene/avatar.obj" \
   --html "$out/validate.html" || status=$?
 # Exit 1 is validate's verdict "intersections found", expected here.
 [ "$status" -eq 1 ]
 test -s "$out/dress_form/report.html"
+test -s "$out/dress_form_ease/report.html"
 test -s "$out/validate.html"

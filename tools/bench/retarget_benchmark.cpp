@@ -2,12 +2,15 @@
 // eps_tol and voxel size, then writes results.csv, results.md and a plot of time against
 // fit error and against distortion (matplotlib, in a virtual environment made on first use),
 // and results.html: the table and the plot in one page that links each run's report page.
-// It then checks the fit/shape targets of the shared scenes (exit 3 when one is missed).
+// Every scene has its garment's source body, so the presets fit with ease; a "tight" row
+// per scene runs the paper's fit for comparison. It then checks the fit/shape targets of
+// the shared scenes' tight fit and their ease targets (exit 3 when one is missed).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +40,7 @@ std::vector<BenchScene> default_scenes(const std::string& project, const std::st
       {"dress_form",
        {bundled + "garment.obj", bundled + "avatar.obj", "", "", "", bundled + "no-fit.txt"},
        false});
+  scenes.back().paths.source_body = bundled + "source_body.obj";
   if (fs::exists(shared)) {
     scenes.push_back(
         {"foxgirl_skirt",
@@ -44,12 +48,14 @@ std::vector<BenchScene> default_scenes(const std::string& project, const std::st
           shared + "/garments/skirt/skeleton.obj", shared + "/avatars/foxgirl/skeleton.obj", "",
           shared + "/garments/skirt/no-fit.txt"},
          true});
+    scenes.back().paths.source_body = shared + "/garments/skirt/source_body.obj";
     scenes.push_back(
         {"goblin_puffer",
          {shared + "/garments/puffer/garment.obj", shared + "/avatars/goblin/avatar.obj",
           shared + "/garments/puffer/skeleton.obj", shared + "/avatars/goblin/skeleton.obj",
           shared + "/avatars/goblin/skin.txt", shared + "/garments/puffer/no-fit.txt"},
          false});
+    scenes.back().paths.source_body = shared + "/garments/puffer/source_body.obj";
   }
   return scenes;
 }
@@ -65,21 +71,23 @@ const char* kCsvHeader =
     "scene,config,quality,preset,status,certified,eps_tol,voxel_size,dhat,fit_samples,"
     "shrink_s,inflate_s,fit_s,certify_s,total_s,newton_inflate,newton_fit,al_rounds,"
     "peak_memory_mb,fit_error_mean,fit_error_p95,edge_change_mean,edge_change_p95,edge_change_max,"
-    "surface_energy_per_area,min_clearance\n";
+    "surface_energy_per_area,min_clearance,fit_mode,ease_median_ratio,ease_mean_error,"
+    "ease_within_25\n";
 
 std::string csv_row(const Run& run) {
   const auto& r = run.result.report;
   const auto& p = r.parameters;
   return fmt::format(
       "{},{},{},{},{},{},{:g},{:g},{:g},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{:.1f},"
-      "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+      "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.4g},{:.4g},{:.4g}\n",
       run.scene, run.config, run.quality, run.preset ? 1 : 0, r.inflate_status + "/" + r.fit_status,
       r.certified ? 1 : 0, p.solver.newton.gradient_tolerance, p.voxel_size, p.solver.dhat,
       p.solver.fit_samples_per_face, r.seconds.shrink, r.seconds.inflate, r.seconds.fit,
       r.seconds.certify, r.seconds.total, r.inflate_newton_iterations, r.fit_newton_iterations,
       r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95, r.shape.mean_edge_change,
       r.shape.p95_edge_change, r.shape.max_edge_change, r.surface_energy_per_area,
-      r.min_distance / r.scene_scale);
+      r.min_distance / r.scene_scale, gr::to_string(r.ease.fit), r.ease.measure.median_ratio,
+      r.ease.measure.mean_error, r.ease.measure.within_25_percent);
 }
 
 const std::vector<std::string> kTableColumns = {"scene",
@@ -95,7 +103,10 @@ const std::vector<std::string> kTableColumns = {"scene",
                                                 "peak MB",
                                                 "fit error mean / p95",
                                                 "edge change mean / p95 / max",
-                                                "min clearance"};
+                                                "min clearance",
+                                                "fit",
+                                                "ease ratio median / mean error",
+                                                "ease within 25%"};
 
 std::vector<std::string> table_row(const Run& run) {
   const auto& r = run.result.report;
@@ -113,11 +124,16 @@ std::vector<std::string> table_row(const Run& run) {
           fmt::format("{:.3g} / {:.3g}", r.fit_error.mean, r.fit_error.p95),
           fmt::format("{:.2f}% / {:.2f}% / {:.2f}%", 100.0 * r.shape.mean_edge_change,
                       100.0 * r.shape.p95_edge_change, 100.0 * r.shape.max_edge_change),
-          fmt::format("{:.3g}", r.min_distance / r.scene_scale)};
+          fmt::format("{:.3g}", r.min_distance / r.scene_scale),
+          gr::to_string(r.ease.fit),
+          fmt::format("{:.2f} / {:.2f}", r.ease.measure.median_ratio, r.ease.measure.mean_error),
+          fmt::format("{:.0f}%", 100.0 * r.ease.measure.within_25_percent)};
 }
 
 const char* kTableNote =
-    "Fit error and clearance in each avatar's file units; times are wall seconds on this machine.";
+    "Fit error and clearance in each avatar's file units; times are wall seconds on this machine. "
+    "Ease ratio: per fitted vertex, its distance to the avatar over the garment's median edge "
+    "ratio, against its distance to the source body (1: the ease kept).";
 
 std::string markdown_table(const std::vector<Run>& runs) {
   std::string md = "|";
@@ -176,15 +192,26 @@ int plot(const std::string& project, const fs::path& out) {
   return std::system(run.c_str()) == 0 ? 0 : 1;
 }
 
-/// The fit/shape targets of the shared scenes at the balanced preset: scale-free mean edge
-/// change at most `shape` while the mean fit error stays within `fit` of the avatar's
-/// bounding-box diagonal; and accurate keeps the shape at least as well as balanced.
+/// The fit/shape targets of the shared scenes' tight fit at the balanced preset: scale-free
+/// mean edge change at most `shape` while the mean fit error stays within `fit` of the
+/// avatar's bounding-box diagonal; and accurate keeps the shape at least as well as
+/// balanced.
 struct ShapeTarget {
   const char* scene;
   double shape, fit;
 };
 constexpr ShapeTarget kShapeTargets[] = {{"foxgirl_skirt", 0.06, 0.002},
                                          {"goblin_puffer", 0.13, 0.0025}};
+
+/// The ease targets of the shared scenes at the balanced preset (ease fit): at least the
+/// median ratio and the share within 25 % that the authors' implementation keeps, measured
+/// the same way (issue #28): skirt 0.65 and 17 %, puffer 0.39 and 9 %.
+struct EaseTarget {
+  const char* scene;
+  double median_ratio, within_25;
+};
+constexpr EaseTarget kEaseTargets[] = {{"foxgirl_skirt", 0.65, 0.17},
+                                       {"goblin_puffer", 0.39, 0.09}};
 
 const Run* find_run(const std::vector<Run>& runs, const std::string& scene,
                     const std::string& config) {
@@ -202,7 +229,7 @@ double avatar_diagonal(const std::string& avatar_path) {
 int check_shape_targets(const std::vector<Run>& runs, const std::vector<BenchScene>& scenes) {
   int failures = 0;
   for (const ShapeTarget& target : kShapeTargets) {
-    const Run* balanced = find_run(runs, target.scene, "balanced");
+    const Run* balanced = find_run(runs, target.scene, "tight");
     if (!balanced) continue;
     std::string avatar;
     for (const BenchScene& s : scenes)
@@ -211,16 +238,31 @@ int check_shape_targets(const std::vector<Run>& runs, const std::vector<BenchSce
     const double fit = b.fit_error.mean / avatar_diagonal(avatar);
     const bool ok = b.certified && b.shape.mean_edge_change <= target.shape && fit <= target.fit;
     failures += !ok;
-    std::printf("%s %s balanced: shape %.4f (target <= %.2f), fit/diagonal %.5f (<= %.4f)\n",
+    std::printf("%s %s tight: shape %.4f (target <= %.2f), fit/diagonal %.5f (<= %.4f)\n",
                 ok ? "PASS" : "FAIL", target.scene, b.shape.mean_edge_change, target.shape, fit,
                 target.fit);
-    if (const Run* accurate = find_run(runs, target.scene, "accurate")) {
+    if (const Run* accurate = find_run(runs, target.scene, "accurate tight")) {
       const double shape = accurate->result.report.shape.mean_edge_change;
       const bool kept = shape <= b.shape.mean_edge_change;
       failures += !kept;
-      std::printf("%s %s accurate: shape %.4f (target <= balanced's %.4f)\n",
+      std::printf("%s %s accurate tight: shape %.4f (target <= balanced's %.4f)\n",
                   kept ? "PASS" : "FAIL", target.scene, shape, b.shape.mean_edge_change);
     }
+  }
+  for (const EaseTarget& target : kEaseTargets) {
+    const Run* balanced = find_run(runs, target.scene, "balanced");
+    if (!balanced) continue;
+    const gr::RetargetReport& r = balanced->result.report;
+    const gr::EaseMeasure& m = r.ease.measure;
+    const bool ok = r.certified && r.ease.fit == gr::FitMode::kEase &&
+                    m.median_ratio >= target.median_ratio &&
+                    m.within_25_percent >= target.within_25;
+    failures += !ok;
+    std::printf(
+        "%s %s balanced: ease ratio median %.3f (target >= %.2f), within 25%% %.1f%% "
+        "(>= %.0f%%)\n",
+        ok ? "PASS" : "FAIL", target.scene, m.median_ratio, target.median_ratio,
+        100.0 * m.within_25_percent, 100.0 * target.within_25);
   }
   return failures;
 }
@@ -257,9 +299,15 @@ int main(int argc, char** argv) {
       std::string name, quality;
       bool preset;
       gr::ParameterOverrides overrides;
+      std::optional<gr::FitMode> fit_mode{};
     };
     std::vector<Config> configs;
     for (const auto& q : presets) configs.push_back({q, q, true, {}});
+    // The paper's fit beside the ease fit, at the presets its targets name.
+    for (const auto& q : {std::string("balanced"), std::string("accurate")})
+      if (std::find(presets.begin(), presets.end(), q) != presets.end())
+        configs.push_back(
+            {q == "balanced" ? "tight" : q + " tight", q, false, {}, gr::FitMode::kTight});
     for (const double e : eps_sweep) {
       Config c{fmt::format("eps_tol={:g}", e), "balanced", false, {}};
       c.overrides.eps_tol = e;
@@ -276,6 +324,7 @@ int main(int argc, char** argv) {
       options.skirt = scene.skirt;
       options.quality = gr::parse_quality(config.quality);
       options.overrides = config.overrides;
+      options.fit_mode = config.fit_mode;
       options.threads = threads;
       options.quiet = true;
       options.out_dir = (fs::path(out) / "runs" / (scene.name + "_" + config.name)).string();

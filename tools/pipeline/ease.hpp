@@ -56,8 +56,8 @@ struct EaseMeasure {
   int vertices = 0;           ///< vertices measured
   double scale = 1.0;         ///< the garment's median edge ratio
   double median_ratio = 0.0;
-  double mean_error = 0.0;        ///< mean |ratio - 1|
-  double within_25_percent = 0.0; ///< share of measured vertices with |ratio - 1| <= 0.25
+  double mean_error = 0.0;         ///< mean |ratio - 1|
+  double within_25_percent = 0.0;  ///< share of measured vertices with |ratio - 1| <= 0.25
 };
 
 /// @param rest, written the garment before and after (normalized, same rows).

@@ -34,12 +34,12 @@ struct SkinTransferReport {
 /// How the fit treated the garment's ease, and how much of it the written garment kept.
 struct EaseReport {
   FitMode fit = FitMode::kTight;
-  bool source_known = false;  ///< a source body gave the source ease
-  int filled_vertices = 0;    ///< over a cut in the source body (SourceEase::filled)
-  double distance_band = 0.0; ///< how far out the fit reads the avatar's distance (normalized)
-  double max_offset = 0.0;    ///< the largest target the fit can hold (normalized)
-  EaseTargets targets;        ///< the fit's local scale; offsets left empty in the report
-  EaseMeasure measure;        ///< on the written garment; vertices 0 without a source body
+  bool source_known = false;   ///< a source body gave the source ease
+  int filled_vertices = 0;     ///< over a cut in the source body (SourceEase::filled)
+  double distance_band = 0.0;  ///< how far out the fit reads the avatar's distance (normalized)
+  double max_offset = 0.0;     ///< the largest target the fit can hold (normalized)
+  EaseTargets targets;         ///< the fit's local scale; offsets left empty in the report
+  EaseMeasure measure;         ///< on the written garment; vertices 0 without a source body
   /// Per garment document position (OBJ `v` order), the measured ratio; NaN where none.
   std::vector<double> document_ratio;
 };

@@ -1,7 +1,9 @@
 #include "tools/pipeline/result_page.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include <fmt/format.h>
@@ -99,6 +101,16 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
   garment.shapes.push_back(shape_of("input", input.vertices, data.avatar, input_crossing));
   garment.shapes.push_back(
       shape_of("output", output_vertices, data.avatar, marked_faces(checked, 0)));
+  // On its source body the input keeps all of its ease, by definition.
+  const std::vector<double>& ease = report.ease.document_ratio;
+  if (report.ease.measure.vertices > 0 &&
+      static_cast<Eigen::Index>(ease.size()) == output_vertices.rows()) {
+    garment.shapes.back().ease_ratio = ease;
+    std::vector<double>& source = garment.shapes.front().ease_ratio;
+    source.resize(ease.size());
+    for (std::size_t v = 0; v < ease.size(); ++v)
+      source[v] = std::isfinite(ease[v]) ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+  }
   data.garments.push_back(std::move(garment));
   data.report = to_json(report);
   data.certificate = certificate.json;

@@ -268,8 +268,10 @@ SourceEase ease_stage(Run& run, const Inputs& in) {
   constexpr double kBandVoxels = 4.0;  // the interpolant reads 2 voxels each side
   ease.distance_band = std::clamp(2.0 * largest + kBandVoxels * voxel, kDistanceBand, kMaxEaseBand);
   ease.max_offset = ease.distance_band - kBandVoxels * voxel;
-  run.progress.log("fit", "ease from the source body: largest {:.4g}, {} vertices over cuts, "
-                   "distance band {:.3g}", largest, source.filled, ease.distance_band);
+  run.progress.log("fit",
+                   "ease from the source body: largest {:.4g}, {} vertices over cuts, "
+                   "distance band {:.3g}",
+                   largest, source.filled, ease.distance_band);
   return source;
 }
 
@@ -648,9 +650,10 @@ void ease_measure_stage(Run& run, const Inputs& in, const std::vector<bool>& fit
   for (std::size_t p = 0; p < obj_to_sim.size(); ++p)
     if (obj_to_sim[p] >= 0)
       ease.document_ratio[p] = ease.measure.ratio[static_cast<std::size_t>(obj_to_sim[p])];
-  run.progress.log("ease", "{} fit: ratio to the source ease median {:.3f}, mean error {:.3f}, "
-                   "{:.1f}% of {} vertices within 25%", to_string(ease.fit),
-                   ease.measure.median_ratio, ease.measure.mean_error,
+  run.progress.log("ease",
+                   "{} fit: ratio to the source ease median {:.3f}, mean error {:.3f}, "
+                   "{:.1f}% of {} vertices within 25%",
+                   to_string(ease.fit), ease.measure.median_ratio, ease.measure.mean_error,
                    100.0 * ease.measure.within_25_percent, ease.measure.vertices);
 }
 
@@ -779,12 +782,14 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                       "; allow more work with --max-al-rounds and --max-newton-iterations, or "
                       "widen the barrier with --dhat");
   if (report.ease.fit == FitMode::kEase) {
-    EaseTargets targets = ease_targets(in.normalized.garment, inflation.garment, source_ease,
-                                       report.ease.max_offset);
+    EaseTargets targets =
+        ease_targets(in.normalized.garment, inflation.garment, source_ease, report.ease.max_offset);
     solver.scene.fit_offsets = std::move(targets.offsets);
     report.ease.targets = std::move(targets);
-    run.progress.log("fit", "ease kept: local scale {:.3g} to {:.3g} (median {:.3g}), {} targets "
-                     "capped", report.ease.targets.min_scale, report.ease.targets.max_scale,
+    run.progress.log("fit",
+                     "ease kept: local scale {:.3g} to {:.3g} (median {:.3g}), {} targets "
+                     "capped",
+                     report.ease.targets.min_scale, report.ease.targets.max_scale,
                      report.ease.targets.median_scale, report.ease.targets.capped);
   }
   const FitResult fit = fit_stage(run, solver, inflation.garment);
@@ -793,7 +798,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
 
   write_stage(run, in, fit.garment);
   shape_stage(run, in, fit.garment);
-  if (report.ease.source_known) ease_measure_stage(run, in, solver.fit_faces, fit.garment, source_ease);
+  if (report.ease.source_known)
+    ease_measure_stage(run, in, solver.fit_faces, fit.garment, source_ease);
   const Certificate certificate = certify_stage(run);
   std::string summary =
       measure_stage(run, in, solver.fit_faces, fit.garment, certificate, total.seconds());

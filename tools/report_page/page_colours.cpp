@@ -14,6 +14,15 @@ const std::array<HeatStop, 5>& heat_stops() {
   return stops;
 }
 
+const std::array<HeatStop, 5>& ease_stops() {
+  static const std::array<HeatStop, 5> stops{{{0.0, {165, 0, 38}},
+                                              {0.25, {253, 174, 97}},
+                                              {0.5, {26, 152, 80}},
+                                              {0.75, {107, 174, 214}},
+                                              {1.0, {8, 69, 148}}}};
+  return stops;
+}
+
 Rgb8 heat_colour(double t) {
   const auto& stops = heat_stops();
   if (!(t < 1.0)) return stops.back().colour;
@@ -69,7 +78,11 @@ nlohmann::json page_colours_json() {
   auto rgb = [](const Rgb8& c) { return nlohmann::json::array({c.r, c.g, c.b}); };
   nlohmann::json stops = nlohmann::json::array();
   for (const HeatStop& s : heat_stops()) stops.push_back({s.position, rgb(s.colour)});
+  nlohmann::json ease = nlohmann::json::array();
+  for (const HeatStop& s : ease_stops()) ease.push_back({s.position, rgb(s.colour)});
   return {{"heat_stops", stops},
+          {"ease_stops", ease},
+          {"ease_unmeasured", rgb(kUnmeasuredEaseColour)},
           {"no_fit", rgb(kNoFitColour)},
           {"no_fit_stripes", {{"period", kNoFitStripePeriod}, {"width", kNoFitStripeWidth}}},
           {"marked", rgb(kMarkedColour)},

@@ -31,6 +31,13 @@ const std::array<HeatStop, 5>& heat_stops();
 /// The heat map's colour at `t` (clamped to [0, 1]; NaN counts as 1).
 Rgb8 heat_colour(double t);
 
+/// The ease map, over ratio / 2 (the ease kept: 0 painted onto the body, 0.5 all of it,
+/// 1 twice it and more): red through orange to green at the source ease, then blue where
+/// the garment stands further off (ColorBrewer's RdYlGn and Blues).
+const std::array<HeatStop, 5>& ease_stops();
+/// Vertices whose ease was not measured (no-fit, or no source ease there).
+constexpr Rgb8 kUnmeasuredEaseColour{222, 210, 180};
+
 /// Faces listed as no-fit are striped in this colour over their heat colour, so their
 /// distance to the body stays readable.
 constexpr Rgb8 kNoFitColour{96, 178, 96};

@@ -17,6 +17,9 @@ struct GarmentShape {
   std::vector<double> distance;  ///< #V: unsigned distance from each vertex to the avatar surface
   std::vector<int>
       marked_faces;  ///< faces to highlight: intersecting, degenerate or otherwise flagged
+  /// #V: the ease kept (EaseMeasure::ratio: 1 kept, 0 painted on), NaN where not measured;
+  /// empty when the page has no ease to show.
+  std::vector<double> ease_ratio{};
 };
 
 /// A garment on the page. Its shapes share the faces; with two shapes the page toggles

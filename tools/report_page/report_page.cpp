@@ -140,6 +140,17 @@ std::vector<Section> retarget_sections(const ReportPageData& data) {
                                 number_at(r, "/fit/newton_iterations").value_or(0))});
   sections.push_back(fit);
 
+  Section ease{"Ease", {}, ""};
+  ease.rows.push_back(
+      {"fit", text_at(r, "/ease/fit") + " (source ease: " + text_at(r, "/ease/source") + ")"});
+  if (number_at(r, "/ease/measured_vertices").value_or(0) > 0) {
+    ease.rows.push_back(
+        {"ease kept, median ratio", format_number(number_at(r, "/ease/median_ratio").value_or(0))});
+    ease.rows.push_back({"vertices within 25% of their source ease",
+                         format_percent(number_at(r, "/ease/within_25_percent"))});
+  }
+  sections.push_back(ease);
+
   Section clearance{"Clearance", {}, ""};
   clearance.rows.push_back(
       {"certified minimum (exact files)", format_length(certified_clearance(data.certificate), u)});
@@ -279,6 +290,38 @@ bool has_no_fit_faces(const ReportPageData& data) {
   return false;
 }
 
+bool has_ease(const ReportPageData& data) {
+  for (const PageGarment& g : data.garments)
+    for (const GarmentShape& s : g.shapes)
+      if (!s.ease_ratio.empty()) return true;
+  return false;
+}
+
+/// The ease map's legend, shown in place of the distance legend in the ease colour mode.
+std::string ease_legend_html() {
+  std::string gradient;
+  for (const HeatStop& s : ease_stops())
+    gradient += fmt::format(", rgb({},{},{}) {:.0f}%", s.colour.r, s.colour.g, s.colour.b,
+                            100.0 * s.position);
+  std::string out =
+      "<div class=\"legend\" id=\"gr-legend-ease\" hidden>\n<div class=\"legend-title\">ease "
+      "kept: distance to the body against the source's, at the garment's scale</div>\n";
+  out += fmt::format(
+      "<div class=\"gradient\" style=\"background: linear-gradient(to right{})\"></div>\n",
+      gradient);
+  out +=
+      "<div class=\"ticks\"><span>0 (on the body)</span><span>1 (as made)</span><span>≥ "
+      "2</span></div>\n";
+  out += fmt::format(
+      "<div class=\"swatches\"><span class=\"swatch\" id=\"gr-swatch-unmeasured\"><i "
+      "style=\"background: rgb({},{},{})\"></i>not measured (no-fit, or no source "
+      "ease)</span><span class=\"swatch\"><i style=\"background: rgb({},{},{})\"></i>intersecting "
+      "or marked</span></div>\n</div>\n",
+      kUnmeasuredEaseColour.r, kUnmeasuredEaseColour.g, kUnmeasuredEaseColour.b, kMarkedColour.r,
+      kMarkedColour.g, kMarkedColour.b);
+  return out;
+}
+
 bool has_shape_toggle(const ReportPageData& data) {
   for (const PageGarment& g : data.garments)
     if (g.shapes.size() > 1) return true;
@@ -334,6 +377,8 @@ std::string toolbar_html(const ReportPageData& data) {
   }
   if (has_no_fit_faces(data))
     out += "<label><input type=\"checkbox\" id=\"gr-nofit\" checked> no-fit region</label>\n";
+  if (has_ease(data))
+    out += "<label><input type=\"checkbox\" id=\"gr-ease\"> colour by ease kept</label>\n";
   out +=
       "<label><input type=\"checkbox\" id=\"gr-body\" checked> avatar</label>\n"
       "<label><input type=\"checkbox\" id=\"gr-seethrough\"> see-through avatar</label>\n"
@@ -371,10 +416,25 @@ nlohmann::ordered_json report_page_scene(const ReportPageData& data) {
               "garment '" + g.name + "' has a face index outside shape '" + s.label + "'");
       for (const int f : s.marked_faces)
         require(f >= 0 && f < face_count, "shape '" + s.label + "' marks a face it does not have");
-      shapes.push_back({{"label", s.label},
-                        {"positions", encode_positions(s.vertices)},
-                        {"distance", encode_unit_values(s.distance)},
-                        {"marked", s.marked_faces}});
+      require(s.ease_ratio.empty() || static_cast<Eigen::Index>(s.ease_ratio.size()) == n,
+              "shape '" + s.label + "' needs one ease ratio per vertex, or none");
+      Json shape = {{"label", s.label},
+                    {"positions", encode_positions(s.vertices)},
+                    {"distance", encode_unit_values(s.distance)},
+                    {"marked", s.marked_faces}};
+      if (!s.ease_ratio.empty()) {
+        // The map saturates at 2; unmeasured vertices go as a list of their own.
+        std::vector<double> ratio(s.ease_ratio.size());
+        std::vector<int> unmeasured;
+        for (std::size_t v = 0; v < ratio.size(); ++v) {
+          const double r = s.ease_ratio[v];
+          ratio[v] = std::isfinite(r) ? std::clamp(r, 0.0, 2.0) : 0.0;
+          if (!std::isfinite(r)) unmeasured.push_back(static_cast<int>(v));
+        }
+        shape["ease_ratio"] = encode_unit_values(ratio);
+        shape["ease_unmeasured"] = unmeasured;
+      }
+      shapes.push_back(std::move(shape));
     }
     garments.push_back({{"name", g.name},
                         {"faces", encode_indices(g.faces)},
@@ -408,6 +468,7 @@ std::string report_page_html(const ReportPageData& data) {
       "<div class=\"canvas-box\" id=\"gr-view\"><noscript>The 3D view needs "
       "JavaScript.</noscript></div>\n";
   body += legend_html(data, heat_range);
+  if (has_ease(data)) body += ease_legend_html();
   body += std::string("<p class=\"hint\">Drag to orbit, scroll to zoom, right-drag to pan") +
           (has_shape_toggle(data) ? "; T toggles the garment's shape" : "") + ".</p>\n";
   body += "</section>\n<aside class=\"numbers\">\n";

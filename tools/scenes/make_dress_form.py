@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Writes the bundled scene `dress_form/`: a tube skirt made for a slimmer body, and a
-dress-form avatar whose hips bulge through it. Y is up, units are metres, the avatar is
+"""Writes the bundled scene `dress_form/`: a tube skirt made for a slimmer body (written
+as `source_body.obj`, the skirt's source body), and a dress-form avatar whose hips bulge
+through it. Y is up, units are metres, the avatar is
 1.7 m tall and off the origin, so the scene exercises welding, UV seams, materials and a
 change of frame without any external data."""
 
@@ -20,11 +21,17 @@ def body_radius(s):
     return 0.135 + hips + waist + 0.02 * math.sin(math.pi * s)
 
 
+def slim_radius(s):
+    """Radius of the slimmer form the skirt was made on: no hips, 1 to 2 cm inside it."""
+    return 0.125 + 0.02 * math.sin(math.pi * s)
+
+
 def fmt(x):
     return repr(float(x))
 
 
-def write_avatar(path, rings=44, segments=40):
+def write_avatar(path, rings=44, segments=40, radius=body_radius,
+                 header="# dress form avatar, Y up, metres\nmtllib avatar.mtl\no DressForm\n"):
     verts = []
     faces = []
     bottom = len(verts)
@@ -32,7 +39,7 @@ def write_avatar(path, rings=44, segments=40):
     for i in range(1, rings):
         s = i / rings
         taper = math.sin(math.pi * s) ** 0.35  # rounds the ends off towards the poles
-        r = body_radius(s) * taper
+        r = radius(s) * taper
         for j in range(segments):
             a = 2 * math.pi * j / segments
             verts.append((1.1 * r * math.cos(a), HEIGHT * s, 0.9 * r * math.sin(a)))
@@ -52,7 +59,7 @@ def write_avatar(path, rings=44, segments=40):
     for j in range(segments):
         faces.append((top, ring(rings - 1, j), ring(rings - 1, j + 1)))
     with open(path, "w") as f:
-        f.write("# dress form avatar, Y up, metres\nmtllib avatar.mtl\no DressForm\nusemtl Form\n")
+        f.write(header + "usemtl Form\n")
         for v in verts:
             f.write("v %s %s %s\n" % tuple(fmt(v[k] + ORIGIN[k]) for k in range(3)))
         for t in faces:
@@ -111,3 +118,5 @@ if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     write_avatar(os.path.join(OUT, "avatar.obj"))
     write_garment(os.path.join(OUT, "garment.obj"))
+    write_avatar(os.path.join(OUT, "source_body.obj"), radius=slim_radius,
+                 header="# the slimmer form the skirt was made on, Y up, metres\no SourceForm\n")

@@ -64,7 +64,8 @@ TEST_CASE("Material files are copied only from inside the asset's folder", "[io]
              "map_Ns alias.png\n"
              "bump pipe.png\n"
              "disp ../outside/secret.txt\n"
-             "decal " + (outside / "secret.txt").string() + "\n");
+             "decal " +
+                 (outside / "secret.txt").string() + "\n");
   fs::create_symlink(outside / "secret.txt", asset / "escape.mtl");
 
   ObjDocument document;

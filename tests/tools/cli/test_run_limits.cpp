@@ -7,8 +7,8 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
@@ -28,12 +28,19 @@ std::string bundled(const std::string& name) {
 /// The bundled scene's retarget arguments into `out`, then `extra`.
 std::vector<std::string> bundled_retarget(const fs::path& out,
                                           const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> args = {"retarget",          "--garment", bundled("garment.obj"),
-                                   "--avatar",          bundled("avatar.obj"),
-                                   "--no-fit",          bundled("no-fit.txt"),
-                                   "--out",             out.string(),
-                                   "--quality",         "fast",
-                                   "--threads",         "1",
+  std::vector<std::string> args = {"retarget",
+                                   "--garment",
+                                   bundled("garment.obj"),
+                                   "--avatar",
+                                   bundled("avatar.obj"),
+                                   "--no-fit",
+                                   bundled("no-fit.txt"),
+                                   "--out",
+                                   out.string(),
+                                   "--quality",
+                                   "fast",
+                                   "--threads",
+                                   "1",
                                    "--quiet"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
@@ -62,8 +69,7 @@ std::pair<CliRun, double> timed_run(const std::vector<std::string>& args, const 
 
 }  // namespace
 
-TEST_CASE("Devices, FIFOs and oversized files are refused before they are read",
-          "[cli][limits]") {
+TEST_CASE("Devices, FIFOs and oversized files are refused before they are read", "[cli][limits]") {
   const fs::path dir = gr::test::fresh_temp_dir("limits_files");
   const fs::path fifo = dir / "garment.fifo";
   REQUIRE(::mkfifo(fifo.c_str(), 0644) == 0);
@@ -133,8 +139,7 @@ TEST_CASE("A run past its timeout ends with exit 9 and writes nothing", "[cli][l
 TEST_CASE("A failed run keeps the earlier certified result aside", "[cli][transaction]") {
   const fs::path root = gr::test::fresh_temp_dir("failed_run_previous");
   const fs::path out = root / "out";
-  REQUIRE(gr::test::run_cli(bundled_retarget(out), "previous_first").exit_code ==
-          gr::kExitSuccess);
+  REQUIRE(gr::test::run_cli(bundled_retarget(out), "previous_first").exit_code == gr::kExitSuccess);
   const std::string digest = gr::sha256_of_file((out / "garment.obj").string());
   // One Newton step per round and one round cannot inflate the avatar.
   const CliRun failed = gr::test::run_cli(

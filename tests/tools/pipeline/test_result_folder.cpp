@@ -143,8 +143,7 @@ TEST_CASE("A folder that is not a result, or holds an input, is refused", "[outp
   }
   SECTION("a file where the folder should be") {
     write_text(root / "file", "x");
-    CHECK_THROWS_WITH(ResultFolder((root / "file").string(), {}),
-                      Catch::Contains("not a folder"));
+    CHECK_THROWS_WITH(ResultFolder((root / "file").string(), {}), Catch::Contains("not a folder"));
   }
 }
 

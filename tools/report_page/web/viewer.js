@@ -110,11 +110,17 @@ class GarmentView {
       const positions = positionsOf(s.positions);
       const marked = new Uint8Array(this.faceCount);
       for (const f of s.marked) marked[f] = 1;
+      let ease = null;
+      if (s.ease_ratio) {
+        ease = valuesOf(s.ease_ratio);
+        for (const v of s.ease_unmeasured) ease[v] = NaN;
+      }
       return { label: s.label, positions, normals: vertexNormals(positions, this.faces),
-               distance: valuesOf(s.distance), marked };
+               distance: valuesOf(s.distance), marked, ease };
     });
     this.colours = scene.colours;
     this.heatRange = scene.heat_range;
+    this.byEase = false;  // colour by the ease kept instead of the distance to the body
     const n = 9 * this.faceCount;
     this.geometry = new THREE.BufferGeometry();
     this.geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(n), 3));
@@ -132,7 +138,17 @@ class GarmentView {
   // The sRGB colour of corner k of face f, as garment_corner_colours decides it.
   cornerColour(shape, f, k) {
     if (shape.marked[f]) return this.colours.marked;
-    return heatColour(this.colours.heat_stops, shape.distance[this.faces[3 * f + k]] / this.heatRange);
+    return this.vertexColour(shape, this.faces[3 * f + k]);
+  }
+
+  // The colour of vertex v in the colour mode shown: its distance to the body, or its ease.
+  vertexColour(shape, v) {
+    if (this.byEase && shape.ease) {
+      const ratio = shape.ease[v];
+      return Number.isNaN(ratio) ? this.colours.ease_unmeasured
+                                 : heatColour(this.colours.ease_stops, ratio / 2);
+    }
+    return heatColour(this.colours.heat_stops, shape.distance[v] / this.heatRange);
   }
 
   show(index, highlightNoFit) {
@@ -276,6 +292,13 @@ function start() {
   document.addEventListener('keydown', (event) => {
     if (event.key === 't' || event.key === 'T') setShape((shapeIndex + 1) % shapeCount);
   });
+  // Only pages with an ease measure have this box.
+  document.getElementById('gr-ease')?.addEventListener('change', (event) => {
+    for (const g of garments) g.byEase = event.target.checked;
+    document.getElementById('gr-legend').hidden = event.target.checked;
+    document.getElementById('gr-legend-ease').hidden = !event.target.checked;
+    setShape(shapeIndex);
+  });
   // Only pages with no-fit faces have this box.
   document.getElementById('gr-nofit')?.addEventListener('change', (event) => {
     highlightNoFit = event.target.checked;
@@ -320,7 +343,7 @@ function start() {
       const reach = camera.position.distanceTo(point);
       const visible = Math.abs(ndc.x) < 1 && Math.abs(ndc.y) < 1 && hit !== undefined &&
           hit.object === garment.mesh && Math.abs(hit.distance - reach) < 1e-3 * radius;
-      const colour = heatColour(scene.colours.heat_stops, shape.distance[v] / scene.heat_range);
+      const colour = garment.vertexColour(shape, v);
       return { x, y, visible, colour, flagged: garment.flagged(shape, v) };
     },
   };
