@@ -8,6 +8,7 @@
 #include "core/common/errors.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/result_page.hpp"
 #include "validate/certify/validation.hpp"
 #include "validate/measure/shape_change.hpp"
@@ -114,9 +115,12 @@ void add_validate_command(CLI::App& root, int& exit_code) {
         shape_warnings.push_back(
             fmt::format("garment {}: shape changed beyond its threshold: {}", g, violation));
     }
-    if (!options->report.empty()) write_json_file(options->report, report);
-    if (!options->marks.empty()) write_marks_obj(options->marks, validation);
-    if (!options->html.empty()) write_validation_page(options->html, validation, report);
+    StagedFiles outputs;
+    if (!options->report.empty()) write_json_file(outputs.stage(options->report), report);
+    if (!options->marks.empty()) write_marks_obj(outputs.stage(options->marks), validation);
+    if (!options->html.empty())
+      write_validation_page(outputs.stage(options->html), validation, report);
+    outputs.commit();
     for (const std::string& warning : shape_warnings)
       std::fprintf(stderr, "warning: %s\n", warning.c_str());
     std::string summary = validation_summary(validation);

@@ -89,6 +89,30 @@ bool exchange_folders(const fs::path& folder, const fs::path& destination) {
   return true;
 }
 
+StagedFiles::~StagedFiles() {
+  if (committed_) return;
+  std::error_code ignored;
+  for (const auto& [staging, target] : files_) fs::remove(staging, ignored);
+}
+
+std::string StagedFiles::stage(const std::string& target) {
+  const fs::path path(target);
+  std::random_device entropy;
+  const fs::path staging =
+      path.parent_path() /
+      fmt::format(".{}.staged-{}-{:08x}", path.filename().string(), ::getpid(), entropy());
+  files_.emplace_back(staging.string(), target);
+  return staging.string();
+}
+
+void StagedFiles::commit() {
+  for (const auto& [staging, target] : files_)
+    if (std::rename(staging.c_str(), target.c_str()) != 0)
+      throw OutputError(
+          fmt::format("{}: cannot move the output into place: {}", target, std::strerror(errno)));
+  committed_ = true;
+}
+
 ResultFolder::ResultFolder(const std::string& out_dir, const std::vector<std::string>& inputs,
                            bool in_place)
     : destination_(out_dir), in_place_(in_place) {

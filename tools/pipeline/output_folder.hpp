@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gr {
@@ -18,6 +19,27 @@ void prepare_output_folder(const std::string& out_dir);
 /// @throw OutputError when a rename fails.
 bool exchange_folders(const std::filesystem::path& folder,
                       const std::filesystem::path& destination);
+
+/// Output files written as a set, where they are not one folder (validate's --report,
+/// --marks and --html): stage() names a staging file beside each target, which the caller
+/// writes; commit() renames them all into place once every one is written, so a run that
+/// fails on the way changes none of them. Without commit the staged files are removed.
+class StagedFiles {
+ public:
+  StagedFiles() = default;
+  ~StagedFiles();
+  StagedFiles(const StagedFiles&) = delete;
+  StagedFiles& operator=(const StagedFiles&) = delete;
+
+  /// The staging path to write `target` at.
+  std::string stage(const std::string& target);
+  /// Renames every staged file over its target. @throw OutputError when a rename fails.
+  void commit();
+
+ private:
+  std::vector<std::pair<std::string, std::string>> files_;  ///< (staging, target)
+  bool committed_ = false;
+};
 
 /// A result folder written as one transaction. Construction takes a lock beside DIR
 /// (`.NAME.lock` in DIR's parent), removes the staging folders that interrupted runs into

@@ -251,9 +251,10 @@ SourceEase ease_stage(Run& run, const Inputs& in) {
     if (ease.fit == FitMode::kEase)
       throw InputError(run.options.inputs.garment, 0,
                        "--fit ease needs the garment's source body (--source-body)");
-    run.warn(
-        "no --source-body: the fit pulls the garment onto the avatar (tight); give the body "
-        "the garment was made on to keep its ease");
+    if (!run.options.fit_mode)
+      run.warn(
+          "no --source-body: the fit pulls the garment onto the avatar (tight); give the body "
+          "the garment was made on to keep its ease");
     return {};
   }
   const TriangleMesh body = read_source_body(body_path, in.normalized);

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "core/io/obj_document.hpp"
@@ -34,8 +34,7 @@ TriangleMesh cut_above(const TriangleMesh& mesh, double z) {
 
 }  // namespace
 
-TEST_CASE("Source ease: the distance to the body, and over a cut the neighbours'",
-          "[ease]") {
+TEST_CASE("Source ease: the distance to the body, and over a cut the neighbours'", "[ease]") {
   const TriangleMesh garment = test::icosphere(2, 1.2);
   const TriangleMesh body = test::icosphere(3, 1.0);
   const SourceEase whole = measure_source_ease(garment, body);
@@ -96,26 +95,25 @@ nlohmann::json read_report(const std::filesystem::path& out) {
 
 std::vector<std::string> skirt_on_foxgirl(const std::filesystem::path& out,
                                           const std::vector<std::string>& extra) {
-  std::vector<std::string> args = {
-      "retarget",
-      "--garment",
-      test::shared_data("garments/skirt/garment.obj"),
-      "--avatar",
-      test::shared_data("avatars/foxgirl/avatar.obj"),
-      "--source-skeleton",
-      test::shared_data("garments/skirt/skeleton.obj"),
-      "--target-skeleton",
-      test::shared_data("avatars/foxgirl/skeleton.obj"),
-      "--no-fit",
-      test::shared_data("garments/skirt/no-fit.txt"),
-      "--skirt",
-      "--source-body",
-      test::shared_data("garments/skirt/source_body.obj"),
-      "--quality",
-      "fast",
-      "--quiet",
-      "--out",
-      out.string()};
+  std::vector<std::string> args = {"retarget",
+                                   "--garment",
+                                   test::shared_data("garments/skirt/garment.obj"),
+                                   "--avatar",
+                                   test::shared_data("avatars/foxgirl/avatar.obj"),
+                                   "--source-skeleton",
+                                   test::shared_data("garments/skirt/skeleton.obj"),
+                                   "--target-skeleton",
+                                   test::shared_data("avatars/foxgirl/skeleton.obj"),
+                                   "--no-fit",
+                                   test::shared_data("garments/skirt/no-fit.txt"),
+                                   "--skirt",
+                                   "--source-body",
+                                   test::shared_data("garments/skirt/source_body.obj"),
+                                   "--quality",
+                                   "fast",
+                                   "--quiet",
+                                   "--out",
+                                   out.string()};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -150,9 +148,17 @@ TEST_CASE("Without a source body the fit is tight, with a warning; ease asks for
           "[ease][cli]") {
   const std::filesystem::path root = test::fresh_temp_dir("ease_bundled");
   const std::string scene = test::project_file("tools/scenes/dress_form/");
-  std::vector<std::string> args = {"retarget", "--garment", scene + "garment.obj", "--avatar",
-                                   scene + "avatar.obj", "--no-fit", scene + "no-fit.txt",
-                                   "--quality", "fast", "--quiet", "--out",
+  std::vector<std::string> args = {"retarget",
+                                   "--garment",
+                                   scene + "garment.obj",
+                                   "--avatar",
+                                   scene + "avatar.obj",
+                                   "--no-fit",
+                                   scene + "no-fit.txt",
+                                   "--quality",
+                                   "fast",
+                                   "--quiet",
+                                   "--out",
                                    (root / "tight").string()};
   REQUIRE(test::run_cli(args, "ease_bundled").exit_code == kExitSuccess);
   const nlohmann::json report = read_report(root / "tight");

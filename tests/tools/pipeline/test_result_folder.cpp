@@ -158,3 +158,26 @@ TEST_CASE("In place, a result folder is the caller's own", "[output][transaction
   CHECK(read_text(dir / "log.txt") == "the caller's file");
   CHECK(count_starting_with(root, ".job") == 0);
 }
+
+TEST_CASE("Staged files replace their targets together, or not at all", "[output][transaction]") {
+  const fs::path root = test::fresh_temp_dir("staged_files");
+  write_text(root / "report.json", "old report");
+  write_text(root / "page.html", "old page");
+  {
+    StagedFiles outputs;
+    write_text(outputs.stage((root / "report.json").string()), "new report");
+    // The run fails before the page is written: nothing changes.
+  }
+  CHECK(read_text(root / "report.json") == "old report");
+  CHECK(count_starting_with(root, ".report.json.staged") == 0);
+  {
+    StagedFiles outputs;
+    write_text(outputs.stage((root / "report.json").string()), "new report");
+    write_text(outputs.stage((root / "page.html").string()), "new page");
+    CHECK(read_text(root / "page.html") == "old page");
+    outputs.commit();
+  }
+  CHECK(read_text(root / "report.json") == "new report");
+  CHECK(read_text(root / "page.html") == "new page");
+  CHECK(count_starting_with(root, ".") == 0);
+}
