@@ -16,6 +16,32 @@
 namespace gr {
 namespace {
 
+/// Leaves out the self pairs whose vertices all lie in one tangle (ContactMesh::
+/// garment_tangles).
+void drop_tangled_pairs(const std::vector<int>& tangles, std::vector<PointTriangleCandidate>& pt,
+                        std::vector<EdgeEdgeCandidate>& ee) {
+  if (tangles.empty()) return;
+  const auto same_tangle = [&](std::initializer_list<int> vertices) {
+    const int first = tangles[static_cast<std::size_t>(*vertices.begin())];
+    if (first < 0) return false;
+    for (const int v : vertices)
+      if (tangles[static_cast<std::size_t>(v)] != first) return false;
+    return true;
+  };
+  pt.erase(
+      std::remove_if(pt.begin(), pt.end(),
+                     [&](const PointTriangleCandidate& c) {
+                       return same_tangle({c.point, c.triangle[0], c.triangle[1], c.triangle[2]});
+                     }),
+      pt.end());
+  ee.erase(
+      std::remove_if(ee.begin(), ee.end(),
+                     [&](const EdgeEdgeCandidate& c) {
+                       return same_tangle({c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]});
+                     }),
+      ee.end());
+}
+
 using Box = Eigen::AlignedBox3d;
 
 /// Boxes of elements (rows of vertex ids) over their vertices' boxes, each grown by `grow`.
@@ -204,6 +230,7 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
               std::make_unique<SelfContactSearch>(mesh_, V0.topRows(mesh_.garment_vertex_count));
         self_->find(garment_point_boxes, garment_face_boxes, garment_edge_boxes, V0, V1, threshold,
                     self_pt, self_ee);
+        drop_tangled_pairs(mesh_.garment_tangles, self_pt, self_ee);
       });
   out.point_triangle = std::move(garment_avatar);
   out.point_triangle.insert(out.point_triangle.end(), self_pt.begin(), self_pt.end());

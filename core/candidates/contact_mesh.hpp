@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "core/common/types.hpp"
 
 namespace gr {
@@ -20,6 +22,11 @@ struct ContactMesh {
   /// Leave out self pairs inside a garment region that provably cannot fold onto itself
   /// during the motion at hand (candidates/fold_free_regions.hpp); off: search them all.
   bool cull_fold_free = true;
+  /// Per garment vertex, the tangle it belongs to (-1: none): where the garment crosses
+  /// itself as given, the crossing faces and their neighbourhood. A self pair whose
+  /// vertices all lie in one tangle is not modelled: it may cross already, and the barrier
+  /// and CCD leave inherited crossings as they are. Empty: no tangle.
+  std::vector<int> garment_tangles;
 
   int vertex_count() const { return garment_vertex_count + avatar_vertex_count; }
 

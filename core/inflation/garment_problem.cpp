@@ -31,6 +31,7 @@ ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters
   ContactMesh mesh = ContactMesh::build(scene.garment, scene.avatar, parameters.self_contact,
                                         scene.avatar_faces_used);
   mesh.cull_fold_free = !parameters.self_contact_everywhere;
+  mesh.garment_tangles = scene.garment_tangles;
   return mesh;
 }
 

@@ -40,6 +40,9 @@ struct GarmentScene {
   /// Per garment vertex, the distance from the avatar the fit holds it at (normalized
   /// units, FitEnergy's offsets); empty: the tight fit, onto the avatar.
   std::vector<double> fit_offsets;
+  /// Per garment vertex, its tangle (ContactMesh::garment_tangles): self pairs inside one
+  /// are not modelled. Empty: the garment does not cross itself.
+  std::vector<int> garment_tangles;
 };
 
 /// The objective of Step 2 (inflation: x = [t, Vg], L_surf + L_contact + L_pos + the AL on

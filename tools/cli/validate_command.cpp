@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/result_page.hpp"
 #include "validate/certify/validation.hpp"
+#include "validate/checks/self_intersections.hpp"
 #include "validate/measure/shape_change.hpp"
 #include "validate/report/file_digest.hpp"
 #include "validate/report/marks_file.hpp"
@@ -86,7 +88,9 @@ void add_validate_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--source", options->sources,
                   "The garment's source OBJ (same vertex order and faces; one per --garment, in "
                   "its order): report how the shape changed (report `garments[].shape`), and "
-                  "exit with 7 beyond the thresholds below")
+                  "exit with 7 beyond the thresholds below; face pairs where the source crosses "
+                  "itself are counted as inherited, apart from new ones, and do not fail the "
+                  "check")
       ->take_all();
   add_shape_check_options(*cmd, options->shape_thresholds);
   cmd->footer(
@@ -101,6 +105,14 @@ void add_validate_command(CLI::App& root, int& exit_code) {
     ValidationOptions validation_options;
     validation_options.threshold = options->threshold;
     validation_options.avatar_mesh = options->avatar_mesh;
+    // Where a source crosses itself, its garment inherits those pairs: counted apart.
+    for (const std::string& source : options->sources) {
+      std::vector<FacePair> inherited;
+      for (const FacePair& p :
+           find_self_intersecting_face_pairs(read_checked_file(source).mesh).pairs.pairs)
+        inherited.push_back({std::min(p.first, p.second), std::max(p.first, p.second)});
+      validation_options.inherited_self_pairs.push_back(std::move(inherited));
+    }
     const Validation validation =
         validate_files(options->garments, options->avatar, validation_options);
     const std::vector<ShapeChange> shapes = measure_against_sources(validation, options->sources);

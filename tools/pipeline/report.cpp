@@ -142,6 +142,18 @@ nlohmann::json to_json(const RetargetReport& r) {
        "ease: a fitted vertex's distance to the body. ratio: on the written garment, its "
        "distance to the avatar over the garment's median edge ratio, against its distance to "
        "the source body; per_vertex_ratio in OBJ vertex order, null where not measured"}};
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const FacePair& p : r.inherited.document_pairs) pairs.push_back({p.first, p.second});
+  report["inherited_crossings"] = {
+      {"pairs", r.inherited.pairs},
+      {"still_crossing", r.inherited.still_crossing},
+      {"tangles", r.inherited.tangles},
+      {"tangled_vertices", r.inherited.tangled_vertices},
+      {"face_pairs", pairs},
+      {"meaning",
+       "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
+       "they are, their neighbourhood left out of self contact; the certificate counts them "
+       "apart and fails only on new ones"}};
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;
 }

@@ -11,6 +11,7 @@
 #include "tools/pipeline/metrics.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
+#include "validate/checks/mesh_intersections.hpp"
 #include "validate/measure/shape_change.hpp"
 
 namespace gr {
@@ -42,6 +43,15 @@ struct EaseReport {
   EaseMeasure measure;         ///< on the written garment; vertices 0 without a source body
   /// Per garment document position (OBJ `v` order), the measured ratio; NaN where none.
   std::vector<double> document_ratio;
+};
+
+/// The crossings of the garment with itself as given, kept as inherited.
+struct InheritedReport {
+  int pairs = 0;                         ///< crossing face pairs of the input
+  int tangles = 0;                       ///< groups of crossings, each left out of self contact
+  int tangled_vertices = 0;              ///< vertices in them
+  int still_crossing = 0;                ///< of the pairs, those the written garment still has
+  std::vector<FacePair> document_pairs;  ///< the pairs as input face ids (0-based)
 };
 
 /// What a retarget run did and measured; written as report.json.
@@ -102,6 +112,7 @@ struct RetargetReport {
 
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
+  InheritedReport inherited;
 
   bool certified = false;
   std::vector<std::string> warnings;

@@ -20,6 +20,7 @@
 #include "shrink/level_set/grid_distance_field.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "tools/pipeline/contact_scope.hpp"
+#include "tools/pipeline/inherited_crossings.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/progress.hpp"
@@ -78,21 +79,14 @@ struct Inputs {
   /// Skin weights bound to the target skeleton when none were given (#J×#avatar welded
   /// vertices); empty otherwise. The shrink uses them, and a written GLB's skin too.
   Eigen::MatrixXd bound_skin_weights;
+  /// Where the garment crosses itself as given (normalized garment's faces).
+  InheritedCrossings inherited;
 };
 
-/// Rejects a garment that crosses itself as given (`self`, found on its normalized copy):
-/// no solver output could be certified.
-void require_garment_free_of_itself(const Scene& scene, const SelfIntersections& self) {
-  if (self.pairs.count == 0) return;
-  const auto& pair = self.pairs.pairs.front();
-  const auto& face_to_obj = scene.garment.face_to_obj;
-  throw InputError(
-      scene.garment_document.source_path, 0,
-      fmt::format("garment intersects itself ({} face pairs, e.g. faces {} and {}); an "
-                  "intersecting garment cannot be certified",
-                  self.pairs.count, face_to_obj[static_cast<std::size_t>(pair.first)] + 1,
-                  face_to_obj[static_cast<std::size_t>(pair.second)] + 1));
-}
+/// Neighbourhood of an inherited crossing whose self pairs are not modelled, in edge rings
+/// around each crossing face: one ring leaves pairs a fraction of an edge from the
+/// crossing line inside the barrier at the start.
+constexpr int kTangleRings = 2;
 
 void write_report(const std::string& path, const RetargetReport& report) {
   const nlohmann::json json = to_json(report);
@@ -194,9 +188,9 @@ Scene read_stage(Run& run) {
   return scene;
 }
 
-/// Normalize: the scene in normalized units, rounded to the lattice where that keeps the
-/// garment free of itself.
-NormalizedScene normalize_stage(Run& run, const Scene& scene) {
+/// Normalize: the scene in normalized units, rounded to the lattice where that adds no
+/// crossing of the garment with itself; the crossings it has as given are kept as inherited.
+NormalizedScene normalize_stage(Run& run, const Scene& scene, InheritedCrossings& inherited) {
   const StageTimer timer;
   RetargetReport& report = run.report();
   const RetargetParameters& solver = run.parameters().solver;
@@ -204,13 +198,28 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
       make_normalized_scene(scene, lattice_spacing(std::min(solver.dhat, solver.fit_support())));
   require_comparable_sizes(scene, normalized);
   // Rounding to the lattice can fold a sliver or close a hairline gap: keep the exact
-  // coordinates then, and refuse the garment only if it crosses itself as given.
-  SelfIntersections self = find_self_intersecting_face_pairs(normalized.garment, 1);
+  // coordinates when they cross less.
+  SelfIntersections self = find_self_intersecting_face_pairs(normalized.garment);
   if (self.pairs.count > 0 && normalized.lattice > 0.0) {
-    normalized = make_normalized_scene(scene);
-    self = find_self_intersecting_face_pairs(normalized.garment, 1);
+    NormalizedScene exact = make_normalized_scene(scene);
+    SelfIntersections exact_self = find_self_intersecting_face_pairs(exact.garment);
+    if (exact_self.pairs.count < self.pairs.count) {
+      normalized = std::move(exact);
+      self = std::move(exact_self);
+    }
   }
-  require_garment_free_of_itself(scene, self);
+  inherited = tangles_of(normalized.garment, std::move(self.pairs.pairs), kTangleRings);
+  InheritedReport& kept = report.inherited;
+  kept.pairs = static_cast<int>(inherited.pairs.size());
+  kept.tangles = inherited.tangle_count;
+  kept.tangled_vertices = inherited.tangled_vertices;
+  kept.document_pairs.clear();
+  const auto& face_to_obj = scene.garment.face_to_obj;
+  for (const FacePair& p : inherited.pairs) {
+    const int a = face_to_obj[static_cast<std::size_t>(p.first)];
+    const int b = face_to_obj[static_cast<std::size_t>(p.second)];
+    kept.document_pairs.push_back({std::min(a, b), std::max(a, b)});
+  }
   report.scene_scale = normalized.normalization.avatar_to_scene.scale;
   report.lattice = normalized.lattice;
   // The solver sees the avatar rounded to the lattice, the certificate the avatar as given.
@@ -222,6 +231,13 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene) {
   // Progress starts once the inputs are known good, so bad input prints its error alone.
   run.progress.log("read", "{} on {}", run.options.inputs.garment, run.options.inputs.avatar);
   for (const auto& warning : scene.warnings) run.warn(warning);
+  if (kept.pairs > 0)
+    run.warn(fmt::format(
+        "the garment crosses itself as given ({} face pairs, e.g. faces {} and {}, 1-based): the "
+        "crossings are kept as inherited, their {} vertices around them left out of self "
+        "contact, and the certificate counts only new ones",
+        kept.pairs, kept.document_pairs.front().first + 1, kept.document_pairs.front().second + 1,
+        kept.tangled_vertices));
   report.garment_vertices = static_cast<int>(normalized.garment.vertices.rows());
   report.garment_faces = static_cast<int>(normalized.garment.faces.rows());
   report.avatar_faces_total = static_cast<int>(normalized.avatar.faces.rows());
@@ -323,6 +339,7 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
                        normalized.target_skeleton->bones, run.options.skirt};
   scene.no_fit = in.scene.no_fit;
   scene.distance_field = &distance_field;
+  scene.garment_tangles = in.inherited.tangles;
   solver.fit_faces = fit_face_mask(
       normalized.garment.faces, static_cast<int>(normalized.garment.vertices.rows()), scene.no_fit);
   report.fit_faces =
@@ -600,6 +617,7 @@ Certificate certify_stage(Run& run) {
       {"quality", to_string(options.quality)}};
   ValidationOptions validation;
   validation.avatar_mesh = options.inputs.avatar_mesh;
+  validation.inherited_self_pairs = {run.report().inherited.document_pairs};
   const Certificate certificate = certify_garment(garment_file, options.inputs.avatar, extra,
                                                   validation, run.result.garment_path);
   write_certificate(run.staged("certificate.json"), certificate);
@@ -672,11 +690,17 @@ std::string measure_stage(Run& run, const Inputs& in, const std::vector<bool>& f
   // certificate's clearance, so the report never holds an infinity.
   if (!std::isfinite(report.min_distance))
     report.min_distance = totals.smallest_avatar_clearance * report.scene_scale;
+  report.inherited.still_crossing = static_cast<int>(totals.inherited_self_intersections);
+  const std::string inherited =
+      report.inherited.pairs > 0
+          ? fmt::format(" (and {} of the input's {} inherited)",
+                        totals.inherited_self_intersections, report.inherited.pairs)
+          : std::string();
   return fmt::format(
-      "{}: {} garment-avatar and {} self intersections; min distance {:.3g} (avatar units); fit "
+      "{}: {} garment-avatar and {} self intersections{}; min distance {:.3g} (avatar units); fit "
       "error mean {:.3g}, p95 {:.3g}; {:.1f} s",
       report.certified ? "certified" : "NOT certified", totals.garment_avatar_intersections,
-      totals.garment_self_intersections, report.min_distance / report.scene_scale,
+      totals.garment_self_intersections, inherited, report.min_distance / report.scene_scale,
       report.fit_error.mean, report.fit_error.p95, total_seconds);
 }
 
@@ -715,7 +739,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
 
   Inputs in;
   in.scene = read_stage(run);
-  in.normalized = normalize_stage(run, in.scene);
+  in.normalized = normalize_stage(run, in.scene, in.inherited);
   in.scene.no_fit = no_fit_for_run(in.scene, in.normalized, !options.inputs.no_fit.empty(),
                                    options.inputs.source_body, options.skirt, run.out.string(),
                                    options.inference, report.inferred);

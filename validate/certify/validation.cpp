@@ -28,8 +28,28 @@ void measure_clearance(const TriangleMesh& first, const TriangleMesh& second,
   has_points = true;
 }
 
+/// Moves the inherited pairs out of `self` (all listed) and returns how many there were.
+std::size_t set_inherited_apart(SelfIntersections& self, std::vector<FacePair> inherited) {
+  const auto less = [](const FacePair& a, const FacePair& b) {
+    return a.first != b.first ? a.first < b.first : a.second < b.second;
+  };
+  std::sort(inherited.begin(), inherited.end(), less);
+  std::vector<FacePair> kept;
+  std::size_t found = 0;
+  for (const FacePair& p : self.pairs.pairs) {
+    const FacePair ordered{std::min(p.first, p.second), std::max(p.first, p.second)};
+    if (std::binary_search(inherited.begin(), inherited.end(), ordered, less))
+      ++found;
+    else
+      kept.push_back(p);
+  }
+  self.pairs.pairs = std::move(kept);
+  self.pairs.count = self.pairs.pairs.size();
+  return found;
+}
+
 GarmentFindings check_garment(const TriangleMesh& garment, const TriangleMesh& avatar,
-                              const ValidationOptions& options) {
+                              const ValidationOptions& options, std::size_t index) {
   GarmentFindings g;
   tbb::parallel_invoke(
       [&] {
@@ -39,6 +59,10 @@ GarmentFindings check_garment(const TriangleMesh& garment, const TriangleMesh& a
       },
       [&] {
         g.self_intersections = find_self_intersecting_face_pairs(garment);
+        if (index < options.inherited_self_pairs.size() &&
+            !options.inherited_self_pairs[index].empty())
+          g.inherited_self_intersections =
+              set_inherited_apart(g.self_intersections, options.inherited_self_pairs[index]);
         g.degenerate_faces = find_degenerate_faces(garment);
       },
       [&] {
@@ -56,6 +80,7 @@ ValidationTotals ValidationResult::totals() const {
   for (const GarmentFindings& g : garments) {
     t.garment_avatar_intersections += g.avatar_intersections.count;
     t.garment_self_intersections += g.self_intersections.pairs.count;
+    t.inherited_self_intersections += g.inherited_self_intersections;
     t.degenerate_faces += g.degenerate_faces.size();
     t.untested_degenerate_neighbours += g.self_intersections.untested_degenerate_neighbours;
     if (g.near_vertices) t.near_vertices = t.near_vertices.value_or(0) + g.near_vertices->size();
@@ -76,8 +101,8 @@ std::size_t ValidationResult::intersection_count() const {
 ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
                                  const TriangleMesh& avatar, const ValidationOptions& options) {
   ValidationResult result;
-  for (const TriangleMesh& garment : garments)
-    result.garments.push_back(check_garment(garment, avatar, options));
+  for (std::size_t i = 0; i < garments.size(); ++i)
+    result.garments.push_back(check_garment(garments[i], avatar, options, i));
   for (std::size_t i = 0; i < garments.size(); ++i)
     for (std::size_t j = i + 1; j < garments.size(); ++j) {
       GarmentPairFindings p;

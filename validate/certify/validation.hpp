@@ -18,12 +18,19 @@ struct ValidationOptions {
   std::optional<double> threshold;
   /// glTF avatar: the mesh (or node) to check against; empty: read_gltf's default.
   std::string avatar_mesh;
+  /// Per garment, the self-intersecting face pairs it inherited (its input crossed itself
+  /// there; (first < second), face rows of the checked mesh): counted apart, they do not
+  /// fail the check. Missing or empty: every pair is new.
+  std::vector<std::vector<FacePair>> inherited_self_pairs;
 };
 
 /// Everything found about one garment. Face indices are rows of the checked meshes.
 struct GarmentFindings {
   FacePairList avatar_intersections;  ///< (garment face, avatar face), all listed
+  /// Pairs the garment did not inherit (ValidationOptions::inherited_self_pairs)
   SelfIntersections self_intersections;
+  /// Self-intersecting pairs it inherited, still crossing; not a failure.
+  std::size_t inherited_self_intersections = 0;
   std::vector<int> degenerate_faces;
   /// Garment–avatar clearance. When an intersection was found it is 0 at the first
   /// intersecting pair, with no nearest points (FCL is not asked).
@@ -44,7 +51,8 @@ struct GarmentPairFindings {
 /// Counts over every garment and garment pair.
 struct ValidationTotals {
   std::size_t garment_avatar_intersections = 0;
-  std::size_t garment_self_intersections = 0;
+  std::size_t garment_self_intersections = 0;  ///< new ones only
+  std::size_t inherited_self_intersections = 0;
   std::size_t garment_garment_intersections = 0;
   std::size_t degenerate_faces = 0;
   std::size_t untested_degenerate_neighbours = 0;

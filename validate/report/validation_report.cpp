@@ -155,6 +155,8 @@ json garment_json(const Validation& v, int index, std::size_t max_listed) {
   const GarmentFindings& g = v.result.garments[static_cast<std::size_t>(index)];
   json self = pairs_json(g.self_intersections.pairs, max_listed);
   self["untested_degenerate_neighbours"] = g.self_intersections.untested_degenerate_neighbours;
+  // The pairs listed are the new ones; the garment's input already had the inherited ones.
+  self["inherited"] = g.inherited_self_intersections;
   json out = {{"index", index},
               {"path", v.garments[static_cast<std::size_t>(index)].path},
               {"avatar_intersections", pairs_json(g.avatar_intersections, max_listed)},
@@ -210,6 +212,7 @@ nlohmann::ordered_json validation_report(const Validation& v, std::size_t max_li
           {"counts",
            {{"garment_avatar_intersections", t.garment_avatar_intersections},
             {"garment_self_intersections", t.garment_self_intersections},
+            {"inherited_self_intersections", t.inherited_self_intersections},
             {"garment_garment_intersections", t.garment_garment_intersections},
             {"degenerate_faces", t.degenerate_faces},
             {"untested_degenerate_neighbours", t.untested_degenerate_neighbours},
@@ -228,6 +231,9 @@ std::string validation_summary(const Validation& v) {
       v.result.certified() ? "certified" : "NOT certified", t.garment_avatar_intersections,
       t.garment_self_intersections, t.garment_garment_intersections, t.degenerate_faces,
       t.smallest_avatar_clearance);
+  if (t.inherited_self_intersections > 0)
+    line += fmt::format("; {} inherited self pairs (the input crossed itself there)",
+                        t.inherited_self_intersections);
   if (t.near_vertices)
     line += fmt::format("; {} vertices closer than {:.6g}", *t.near_vertices, *v.options.threshold);
   return line;

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
@@ -274,9 +275,42 @@ TEST_CASE("bad input: output folder under /proc cannot be created", "[cli][error
                   5, "/proc/gr_no_such_folder/out: cannot create output folder");
 }
 
-TEST_CASE("bad input: garment that intersects itself", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/self_crossing.obj", "--avatar", "{D}/sphere.obj"}, 2,
-                  "self_crossing.obj: garment intersects itself (");
+TEST_CASE("A garment that crosses itself as given is retargeted with its crossings kept",
+          "[cli][inherited]") {
+  const fs::path dir = bad_input_dir();
+  const fs::path out = dir / "crossing_out";
+  const std::string garment = (dir / "self_crossing.obj").string();
+  const gr::test::CliRun run = gr::test::run_cli(
+      {"retarget", "--garment", garment, "--avatar", (dir / "sphere.obj").string(), "--out",
+       out.string(), "--quality", "fast", "--voxel-size", "0.05"},
+      "inherited_crossing");
+  CAPTURE(run.err, run.out);
+  REQUIRE(run.exit_code == gr::kExitSuccess);
+  CHECK_THAT(run.out,
+             Catch::Contains("0 self intersections (and") && Catch::Contains("inherited)"));
+  const auto report = nlohmann::json::parse(gr::test::read_text(out / "report.json"));
+  const int pairs = report["inherited_crossings"]["pairs"].get<int>();
+  CHECK(pairs > 0);
+  CHECK(report["inherited_crossings"]["tangles"] == 1);
+  CHECK(report["inherited_crossings"]["face_pairs"].size() == static_cast<std::size_t>(pairs));
+  CHECK_THAT(report["warnings"].dump(), Catch::Contains("crosses itself as given"));
+  const auto certificate = nlohmann::json::parse(gr::test::read_text(out / "certificate.json"));
+  CHECK(certificate["certified"] == true);
+  CHECK(certificate["counts"]["garment_self_intersections"] == 0);
+  CHECK(certificate["counts"]["inherited_self_intersections"].get<int>() ==
+        report["inherited_crossings"]["still_crossing"].get<int>());
+
+  // validate alone fails the output on its crossings, and counts them apart with --source.
+  const std::vector<std::string> validate = {"validate", "--garment",
+                                             (out / "garment.obj").string(), "--avatar",
+                                             (dir / "sphere.obj").string()};
+  CHECK(gr::test::run_cli(validate, "inherited_validate").exit_code == gr::kExitIntersections);
+  std::vector<std::string> with_source = validate;
+  with_source.insert(with_source.end(), {"--source", garment, "--shape-check", "off"});
+  const gr::test::CliRun split = gr::test::run_cli(with_source, "inherited_validate_source");
+  CAPTURE(split.out);
+  CHECK(split.exit_code == gr::kExitSuccess);
+  CHECK_THAT(split.out, Catch::Contains("0 self") && Catch::Contains("inherited self pairs"));
 }
 
 TEST_CASE("bad input: quads and n-gons are triangulated with a warning and the run proceeds",

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <vector>
+
+#include "core/common/types.hpp"
+#include "validate/checks/mesh_intersections.hpp"
+
+namespace gr {
+
+/// Where a garment crosses itself as given: production garments lay collars, straps and
+/// pockets through their base cloth. The run keeps these crossings as they are (inherited)
+/// and certifies that it adds none.
+struct InheritedCrossings {
+  std::vector<FacePair> pairs;  ///< crossing face pairs (first < second), simulation faces
+  /// Per garment vertex, its tangle (GarmentScene::garment_tangles), -1 outside every one;
+  /// empty when nothing crosses.
+  std::vector<int> tangles;
+  int tangle_count = 0;
+  int tangled_vertices = 0;
+};
+
+/// The tangles of `pairs`: the vertices of each crossing face and those within `rings`
+/// edges of them, grouped so that both faces of a crossing pair, and overlapping
+/// neighbourhoods, share one tangle.
+/// @param pairs face rows of `garment`.
+InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs,
+                              int rings);
+
+}  // namespace gr
