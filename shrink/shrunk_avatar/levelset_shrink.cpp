@@ -140,12 +140,12 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
       throw ShrinkBandTooShallowError(
           fmt::format("the narrow band (depth {:.4g}) is too shallow to free the garment: {}",
                       deepest, conflict->describe()),
-          *conflict);
+          *conflict, shrunk.vertices);
     throw NoValidShrinkError(
         fmt::format("no shrunk avatar is free of the garment: even eroded to the medial region "
                     "(depth {:.4g}) {}",
                     deepest, conflict->describe()),
-        *conflict);
+        *conflict, shrunk.vertices);
   }
 
   accept(deepest);

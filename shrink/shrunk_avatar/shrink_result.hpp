@@ -37,15 +37,19 @@ struct ShrinkConflict {
 };
 
 /// No shrunk avatar free of the garment was found; conflict() says where the garment and
-/// the most shrunk avatar tried still cross.
+/// the most shrunk avatar tried still cross, and closest() is that avatar (#V×3, normalized
+/// units; empty when none was made), so that a user can see why.
 class NoValidShrinkError : public std::runtime_error {
  public:
-  NoValidShrinkError(const std::string& what, const ShrinkConflict& conflict)
-      : std::runtime_error(what), conflict_(conflict) {}
+  NoValidShrinkError(const std::string& what, const ShrinkConflict& conflict,
+                     MatrixX3d closest = {})
+      : std::runtime_error(what), conflict_(conflict), closest_(std::move(closest)) {}
   const ShrinkConflict& conflict() const { return conflict_; }
+  const MatrixX3d& closest() const { return closest_; }
 
  private:
   ShrinkConflict conflict_;
+  MatrixX3d closest_;
 };
 
 /// The level-set shrink on a narrow-band grid reached the band's floor and still conflicts:

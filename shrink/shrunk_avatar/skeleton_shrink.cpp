@@ -249,7 +249,7 @@ ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& 
       fmt::format("no shrunk avatar is free of the garment: on the source skeleton with "
                   "pullback {:.3g}, after pulling crossing faces toward their joints, {}",
                   pullback * 2.0, conflict->describe()),
-      *conflict);
+      *conflict, shrunk.vertices);
 }
 
 }  // namespace gr

@@ -78,6 +78,9 @@ TEST_CASE("shrink command exits 3 and names the conflict when no shrink exists",
   // In the garment's frame: on the sheet's plane y = 0.8.
   REQUIRE(report["conflict"]["position"][1].get<double>() == Approx(0.8).margin(1e-6));
   REQUIRE_FALSE(std::filesystem::exists(out / "shrunk_avatar.obj"));
+  // The most shrunk avatar tried is written for the user to see why, with what crosses.
+  CHECK(std::filesystem::is_regular_file(out / "closest_shrunk_avatar.obj"));
+  CHECK_FALSE(report["closest"]["crossing_garment_faces"].empty());
 }
 
 TEST_CASE("shrink command rejects skeleton mode without skeletons", "[cli][shrink]") {

@@ -25,8 +25,7 @@ void unite(std::vector<int>& parent, int a, int b) {
 
 }  // namespace
 
-InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs,
-                              int rings) {
+InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs, int rings) {
   InheritedCrossings crossings;
   crossings.pairs = std::move(pairs);
   if (crossings.pairs.empty()) return crossings;

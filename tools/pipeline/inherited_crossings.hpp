@@ -23,7 +23,6 @@ struct InheritedCrossings {
 /// edges of them, grouped so that both faces of a crossing pair, and overlapping
 /// neighbourhoods, share one tangle.
 /// @param pairs face rows of `garment`.
-InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs,
-                              int rings);
+InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs, int rings);
 
 }  // namespace gr

@@ -154,6 +154,7 @@ nlohmann::json to_json(const RetargetReport& r) {
        "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
        "they are, their neighbourhood left out of self contact; the certificate counts them "
        "apart and fails only on new ones"}};
+  if (!r.shrink_conflict.is_null()) report["shrink_conflict"] = r.shrink_conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;
 }

@@ -113,6 +113,9 @@ struct RetargetReport {
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
   InheritedReport inherited;
+  /// After no valid shrink: the closest shrunk avatar written and the faces still crossing
+  /// (write_closest_shrink); null otherwise.
+  nlohmann::json shrink_conflict;
 
   bool certified = false;
   std::vector<std::string> warnings;

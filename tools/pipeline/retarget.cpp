@@ -23,6 +23,7 @@
 #include "tools/pipeline/inherited_crossings.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
+#include "tools/pipeline/pierced_faces.hpp"
 #include "tools/pipeline/progress.hpp"
 #include "tools/pipeline/result_page.hpp"
 #include "validate/certify/certificate.hpp"
@@ -390,6 +391,17 @@ void record_shrink(Run& run, const ShrinkResult& shrunk, double seconds) {
   report.seconds.shrink += seconds;
   run.progress.log("shrink", "{} shrink certified free of the garment in {:.2f} s",
                    to_string(report.shrink_mode), seconds);
+}
+
+/// Why a skeleton shrink cannot be free of the garment when its bones pass through garment
+/// faces (a closed shell, a capped leg): "; " and the faces and bones, else "".
+std::string pierced_cause(const Inputs& in, ShrinkMode mode) {
+  if (mode != ShrinkMode::kSkeleton || !in.normalized.source_skeleton) return "";
+  const std::vector<FacePair> pierced =
+      faces_pierced_by_bones(in.normalized.garment, *in.normalized.source_skeleton);
+  if (pierced.empty()) return "";
+  return "; " + describe_pierced_faces(pierced, in.scene.garment.face_to_obj,
+                                       *in.normalized.source_skeleton, in.scene.joint_names);
 }
 
 /// When the inflation fails from a skeleton-shrunk avatar, it runs again from one shrunk
@@ -781,10 +793,13 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     const Vector3d where =
         in.normalized.normalization.garment_to_scene.invert(e.conflict().position);
     report.seconds.shrink = shrink_timer.seconds();
+    report.shrink_conflict =
+        write_closest_shrink(run.out.string(), options.out_dir, in.scene, in.normalized, e);
     return finish(RetargetStatus::kNoValidShrink,
                   fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the garment's "
-                              "frame)",
-                              e.what(), where.x(), where.y(), where.z()));
+                              "frame){}",
+                              e.what(), where.x(), where.y(), where.z(),
+                              pierced_cause(in, report.shrink_mode)));
   }
   record_shrink(run, shrunk, shrink_timer.seconds());
 

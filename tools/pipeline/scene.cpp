@@ -71,6 +71,8 @@ void skeletons_from_skins(const ScenePaths& paths, Scene& scene) {
       match_skin_skeletons(*scene.garment_gltf->skin, target_skin, map, paths.avatar);
   scene.source_skeleton = matched.source;
   scene.target_skeleton = matched.target;
+  for (const int j : matched.target_joint)
+    scene.joint_names.push_back(target_skin.joints[static_cast<std::size_t>(j)].name);
   if (!skinned_avatar) return;
   // Weights of target joints left out go to the nearest kept ancestor.
   const auto& sim_to_obj = scene.avatar.sim_to_obj;

@@ -34,6 +34,8 @@ struct Scene {
   SimulationMesh avatar;
   std::optional<Skeleton> source_skeleton;
   std::optional<Skeleton> target_skeleton;
+  /// The skeletons' joint names when skins gave them (in their joint order); else empty.
+  std::vector<std::string> joint_names;
   Eigen::MatrixXd skin_weights;  ///< #joints × #avatar welded vertices; empty when not given
   std::vector<int> no_fit;       ///< welded garment vertex ids
   std::vector<std::string> warnings;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 #include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/output_folder.hpp"
+#include "validate/checks/mesh_intersections.hpp"
 
 namespace gr {
 
@@ -91,6 +93,32 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                             *scene.target_skeleton, skin_weights, options);
 }
 
+nlohmann::json write_closest_shrink(const std::string& dir, const std::string& record_dir,
+                                    const Scene& scene, const NormalizedScene& normalized,
+                                    const NoValidShrinkError& error) {
+  const MatrixX3d& closest = error.closest();
+  if (closest.rows() != normalized.avatar.vertices.rows()) return nullptr;
+  const Similarity& garment_frame = normalized.normalization.garment_to_scene;
+  const Similarity& avatar_frame = normalized.normalization.avatar_to_scene;
+  const MatrixX3d positions = export_positions(
+      scene.avatar_document, scene.avatar, garment_frame.invert_rows(closest),
+      [&](const Vector3d& x) { return garment_frame.invert(avatar_frame.apply(x)); });
+  const std::string name = "closest_shrunk_avatar.obj";
+  copy_material_files(scene.avatar_document, dir);
+  write_obj((std::filesystem::path(dir) / name).string(), scene.avatar_document, positions);
+  std::set<int> garment_faces, avatar_faces;
+  for (const FacePair& p : find_intersecting_face_pairs(
+                               TriangleMesh{closest, normalized.avatar.faces}, normalized.garment)
+                               .pairs) {
+    avatar_faces.insert(scene.avatar.face_to_obj[static_cast<std::size_t>(p.first)]);
+    garment_faces.insert(scene.garment.face_to_obj[static_cast<std::size_t>(p.second)]);
+  }
+  return {{"closest_shrunk_avatar", (std::filesystem::path(record_dir) / name).string()},
+          {"frame", "the garment file's frame and units, over the input garment"},
+          {"crossing_garment_faces", garment_faces},
+          {"crossing_avatar_faces", avatar_faces}};
+}
+
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const Stopwatch stopwatch;
   const RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
@@ -163,6 +191,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
     run.message = fmt::format("{} [in the garment's frame: ({:.6g}, {:.6g}, {:.6g})]", e.what(),
                               where.x(), where.y(), where.z());
     report["found"] = false;
+    report["closest"] = write_closest_shrink(out.string(), options.out_dir, scene, normalized, e);
     report["conflict"] = {
         {"kind", conflict.kind == ShrinkConflict::Kind::kSurfacesCross ? "surfaces cross"
                                                                        : "garment inside avatar"},

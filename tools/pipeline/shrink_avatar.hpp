@@ -1,6 +1,8 @@
 #pragma once
 
 #include <optional>
+
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "shrink/common/progress.hpp"
@@ -47,6 +49,17 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
                            const ProgressCallback& progress = {},
                            std::optional<double> pullback = {});
+
+/// After a failed shrink: writes the most shrunk avatar tried, `error.closest()`, as
+/// `dir`/closest_shrunk_avatar.obj (the avatar's faces and materials, positions in the
+/// garment's frame so that it lies over the input garment), and returns the report part
+/// naming it and the garment and avatar faces (input ids, 0-based) that still cross.
+/// Returns null when the error holds no avatar.
+/// @param record_dir the folder as the report names it (the staging folder is `dir`).
+/// @throw OutputError when the file cannot be written.
+nlohmann::json write_closest_shrink(const std::string& dir, const std::string& record_dir,
+                                    const Scene& scene, const NormalizedScene& normalized,
+                                    const NoValidShrinkError& error);
 
 /// Everything `garment-retarget shrink` can be asked.
 struct ShrinkRunOptions {
