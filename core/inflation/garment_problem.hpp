@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include <map>
 #include <memory>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "core/energies/position_energy.hpp"
 #include "core/energies/stretch_energy.hpp"
 #include "core/energies/surface_shape_energy.hpp"
+#include "core/energies/tie_energy.hpp"
 #include "core/inflation/avatar_constraint.hpp"
 #include "core/inflation/retarget_parameters.hpp"
 #include "core/solver/problem.hpp"
@@ -43,6 +46,9 @@ struct GarmentScene {
   /// Per garment vertex, its tangle (ContactMesh::garment_tangles): self pairs inside one
   /// are not modelled. Empty: the garment does not cross itself.
   std::vector<int> garment_tangles;
+  /// Garment vertex pairs held together (TieEnergy): the copies a split non-manifold edge
+  /// made, each with its original.
+  std::vector<std::array<int, 2>> ties;
 };
 
 /// The objective of Step 2 (inflation: x = [t, Vg], L_surf + L_contact + L_pos + the AL on

@@ -42,6 +42,11 @@ struct RetargetParameters {
   /// 0.069 without it, 0.0014 and 0.020 at 0.03, 0.0021 and 0.011 at 0.1; goblin_puffer
   /// 0.0015 and 0.150 without, 0.0022 and 0.071 at 0.03, 0.0028 and 0.056 at 0.1.
   double w_fit_stretch = 0.03;
+  /// The ties holding the copies of a split non-manifold edge on their originals
+  /// (TieEnergy): stiff against the shape and fit terms, so that the copies stay close and
+  /// welding them back in the written file moves little (the certificate checks the
+  /// welded file).
+  double w_tie = 1e6;
   double w_fit = 2.0;  ///< fit step only
   /// The fit's Newton step cap; 0: newton.max_iterations, as every inflation round.
   int fit_max_iterations = 0;

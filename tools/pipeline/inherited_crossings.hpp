@@ -21,8 +21,10 @@ struct InheritedCrossings {
 
 /// The tangles of `pairs`: the vertices of each crossing face and those within `rings`
 /// edges of them, grouped so that both faces of a crossing pair, and overlapping
-/// neighbourhoods, share one tangle.
+/// neighbourhoods, share one tangle. Each of `groups` (vertex ids, e.g. a split edge's
+/// vertices and their copies) makes a tangle the same way.
 /// @param pairs face rows of `garment`.
-InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs, int rings);
+InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs, int rings,
+                              const std::vector<std::vector<int>>& groups = {});
 
 }  // namespace gr

@@ -20,7 +20,7 @@ std::string describe_pierced_faces(const std::vector<FacePair>& pierced,
                                    const std::vector<std::string>& joint_names) {
   const auto joint = [&](int j) {
     return j < static_cast<int>(joint_names.size()) ? joint_names[static_cast<std::size_t>(j)]
-                                                     : fmt::format("joint {}", j);
+                                                    : fmt::format("joint {}", j);
   };
   std::set<int> faces, bones;
   for (const FacePair& p : pierced) {

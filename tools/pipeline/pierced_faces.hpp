@@ -14,8 +14,7 @@ namespace gr {
 /// waist and ankles) around the body. A skeleton shrink collapses the avatar onto the
 /// bones, so no shrunk avatar is free of such a garment.
 /// @return (garment face, bone) pairs, sorted by face.
-std::vector<FacePair> faces_pierced_by_bones(const TriangleMesh& garment,
-                                             const Skeleton& skeleton);
+std::vector<FacePair> faces_pierced_by_bones(const TriangleMesh& garment, const Skeleton& skeleton);
 
 /// One line naming the pierced faces (input face ids `face_to_obj`, 1-based) and the bones
 /// through them (`joint_names` when given, else joint indices).

@@ -154,6 +154,12 @@ nlohmann::json to_json(const RetargetReport& r) {
        "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
        "they are, their neighbourhood left out of self contact; the certificate counts them "
        "apart and fails only on new ones"}};
+  report["split_non_manifold_edges"] = {
+      {"edges", r.split_edges},
+      {"vertex_copies", r.split_copies},
+      {"meaning",
+       "edges shared by more than two faces: the faces beyond the first two took tied copies "
+       "of the edge's vertices for the solver; the written file welds them back"}};
   if (!r.shrink_conflict.is_null()) report["shrink_conflict"] = r.shrink_conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;

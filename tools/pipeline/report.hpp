@@ -113,6 +113,8 @@ struct RetargetReport {
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
   InheritedReport inherited;
+  int split_edges = 0;   ///< garment edges of more than two faces, split for the solver
+  int split_copies = 0;  ///< vertex copies the split made (welded back in the written file)
   /// After no valid shrink: the closest shrunk avatar written and the faces still crossing
   /// (write_closest_shrink); null otherwise.
   nlohmann::json shrink_conflict;

@@ -209,7 +209,13 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene, InheritedCrossings
       self = std::move(exact_self);
     }
   }
-  inherited = tangles_of(normalized.garment, std::move(self.pairs.pairs), kTangleRings);
+  // The copies of a split edge lie on their originals: their neighbourhood is a tangle too.
+  std::vector<std::vector<int>> split_sites;
+  for (const auto& [copy, original] : scene.garment_ties) split_sites.push_back({copy, original});
+  inherited =
+      tangles_of(normalized.garment, std::move(self.pairs.pairs), kTangleRings, split_sites);
+  report.split_edges = scene.split_edges;
+  report.split_copies = static_cast<int>(scene.garment_ties.size());
   InheritedReport& kept = report.inherited;
   kept.pairs = static_cast<int>(inherited.pairs.size());
   kept.tangles = inherited.tangle_count;
@@ -341,6 +347,7 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
   scene.no_fit = in.scene.no_fit;
   scene.distance_field = &distance_field;
   scene.garment_tangles = in.inherited.tangles;
+  scene.ties = in.scene.garment_ties;
   solver.fit_faces = fit_face_mask(
       normalized.garment.faces, static_cast<int>(normalized.garment.vertices.rows()), scene.no_fit);
   report.fit_faces =

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/obj_document.hpp"
 #include "test_support.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/pipeline/extremes_support.hpp"
@@ -31,7 +32,6 @@ const fs::path& bad_input_dir() {
     const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     write_text(dir / "no_faces.obj", tri);
     write_text(dir / "one_vertex_face.obj", tri + "f 1\n");
-    write_text(dir / "nonmanifold.obj", tri + "v 0 0 1\nv 0 -1 0\nf 1 2 3\nf 1 2 4\nf 1 2 5\n");
     write_text(dir / "garbage.obj", std::string("\x7f"
                                                 "ELF\x02\x01\x01\x00\x00\x00 binary",
                                                 20));
@@ -203,8 +203,42 @@ TEST_CASE("bad input: garment with no faces", "[cli][errors]") {
                   "garment has no (non-degenerate) triangle");
 }
 
-TEST_CASE("bad input: non-manifold garment", "[cli][errors]") {
-  check_bad_input({"--garment", "{D}/nonmanifold.obj", "--avatar", "{A}"}, 2, "non-manifold");
+TEST_CASE("A non-manifold garment is split for the solver and welded back", "[cli][repairs]") {
+  const fs::path dir = bad_input_dir();
+  // A patch over the sphere with two fins on one of its inner edges: three and four faces
+  // share the edge.
+  gr::TriangleMesh patch = gr::test::flat_patch(4, 0.25, 1.5);
+  const int a = 6, b = 12;  // an inner diagonal (faces a, b, d of the grid)
+  const Eigen::Index n = patch.vertices.rows();
+  patch.vertices.conservativeResize(n + 2, 3);
+  patch.vertices.row(n) = 0.5 * (patch.vertices.row(a) + patch.vertices.row(b));
+  patch.vertices(n, 2) += 0.2;
+  patch.vertices.row(n + 1) = patch.vertices.row(n);
+  patch.vertices(n + 1, 2) += 0.15;
+  patch.vertices(n + 1, 0) += 0.1;
+  const Eigen::Index f = patch.faces.rows();
+  patch.faces.conservativeResize(f + 2, 3);
+  patch.faces.row(f) << a, b, static_cast<int>(n);
+  patch.faces.row(f + 1) << b, a, static_cast<int>(n + 1);
+  gr::test::write_mesh_obj(dir / "fins.obj", patch);
+  const fs::path out = dir / "fins_out";
+  const gr::test::CliRun run =
+      gr::test::run_cli({"retarget", "--garment", (dir / "fins.obj").string(), "--avatar",
+                         (dir / "sphere.obj").string(), "--out", out.string(), "--quality", "fast",
+                         "--voxel-size", "0.05"},
+                        "nonmanifold_fins");
+  CAPTURE(run.out, run.err);
+  REQUIRE(run.exit_code == gr::kExitSuccess);
+  CHECK_THAT(run.err, Catch::Contains("1 edges shared by more than two faces were split"));
+  const auto report = nlohmann::json::parse(gr::test::read_text(out / "report.json"));
+  CHECK(report["split_non_manifold_edges"]["edges"] == 1);
+  CHECK(report["split_non_manifold_edges"]["vertex_copies"] == 4);
+  // The written file keeps the input's vertices and faces: the copies are welded back.
+  const gr::ObjDocument written = gr::read_obj((out / "garment.obj").string());
+  CHECK(written.positions.rows() == patch.vertices.rows());
+  CHECK(written.faces.size() == static_cast<std::size_t>(patch.faces.rows()));
+  // Still a fan of four faces on the edge, and the fins still stand off the patch.
+  CHECK((written.positions.row(n) - written.positions.row(a)).norm() > 0.05);
 }
 
 TEST_CASE("bad input: skeletons with different joint counts", "[cli][errors]") {

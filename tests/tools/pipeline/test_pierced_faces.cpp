@@ -2,8 +2,8 @@
 #include <fstream>
 #include <string>
 
-#include <nlohmann/json.hpp>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "extremes_support.hpp"
@@ -22,8 +22,8 @@ TriangleMesh closed_cube() {
   for (int i = 0; i < 8; ++i)
     cube.vertices.row(i) << (i & 1 ? 1 : -1), (i & 2 ? 1 : -1), (i & 4 ? 1 : -1);
   cube.faces.resize(12, 3);
-  cube.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2,
-      2, 4, 6, 1, 3, 5, 3, 7, 5;
+  cube.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2,
+      4, 6, 1, 3, 5, 3, 7, 5;
   return cube;
 }
 
@@ -68,7 +68,8 @@ TEST_CASE("A capped garment over a skeleton: no valid shrink, naming the faces a
   body.vertices.col(1) *= 2.5;
   test::write_mesh_obj(dir / "body.obj", body);
   test::write_mesh_obj(dir / "box.obj", closed_cube());
-  std::ofstream(dir / "skeleton.obj") << "v 0.1 -2.4 0.2\nv 0.1 0 0.2\nv 0.1 2.4 0.2\nl 1 2\nl 2 3\n";
+  std::ofstream(dir / "skeleton.obj")
+      << "v 0.1 -2.4 0.2\nv 0.1 0 0.2\nv 0.1 2.4 0.2\nl 1 2\nl 2 3\n";
   const fs::path out = dir / "out";
   const test::CliRun run = test::run_cli(
       {"retarget", "--garment", (dir / "box.obj").string(), "--avatar", (dir / "body.obj").string(),
