@@ -308,6 +308,19 @@ bool is_gltf_path(const std::string& path) {
   return extension == ".glb" || extension == ".gltf";
 }
 
+std::vector<std::string> gltf_mesh_names(const std::string& path) {
+  const tinygltf::Model model = load_model(path);
+  const NodeGraph graph = node_graph(model, path);
+  std::vector<std::string> names;
+  for (const int node : graph.order) {
+    const auto& info = model.nodes[static_cast<std::size_t>(node)];
+    if (info.mesh < 0 || static_cast<std::size_t>(info.mesh) >= model.meshes.size()) continue;
+    const std::string& mesh_name = model.meshes[static_cast<std::size_t>(info.mesh)].name;
+    names.push_back(mesh_name.empty() ? info.name : mesh_name);
+  }
+  return names;
+}
+
 GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
   auto shared = std::make_shared<GltfModel>();
   shared->model = load_model(path);

@@ -72,6 +72,11 @@ bool is_gltf_path(const std::string& path);
 ///        names), or a mesh with no triangle.
 GltfAsset read_gltf(const std::string& path, const std::string& mesh_name = "");
 
+/// The names of the meshes (or, for an unnamed mesh, of its node) that the scene's nodes
+/// place, in scene order: the names read_gltf takes.
+/// @throw InputError as read_gltf for a file that cannot be parsed.
+std::vector<std::string> gltf_mesh_names(const std::string& path);
+
 /// Reads a surface of either format: `read_gltf(path, mesh_name).document` for `.glb` and
 /// `.gltf`, else `read_obj(path)`.
 /// @throw InputError as the reader used.

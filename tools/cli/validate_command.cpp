@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/common/errors.hpp"
+#include "core/io/gltf_document.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/pipeline/output_folder.hpp"
@@ -24,6 +25,7 @@ namespace {
 
 struct ValidateCommandOptions {
   std::vector<std::string> garments;
+  std::vector<std::string> garment_meshes;
   std::string avatar;
   std::string report;
   std::string marks;
@@ -38,6 +40,30 @@ struct ValidateCommandOptions {
 /// Each garment's shape against its source: the same vertices in the same order and the same
 /// faces, in the same units.
 /// @throw InputError when a source is unreadable or is not the same mesh.
+/// Pairs --garment files with --garment-mesh names: one name per garment, or several names
+/// (or "all") of a single garment file, each a layer.
+/// @throw InputError for other counts.
+void expand_garment_meshes(ValidateCommandOptions& options) {
+  std::vector<std::string>& meshes = options.garment_meshes;
+  if (meshes.empty()) return;
+  if (options.garments.size() == 1 && meshes.size() == 1 && meshes.front() == "all") {
+    meshes.clear();
+    const std::string avatar_mesh =
+        options.avatar == options.garments.front()
+            ? read_gltf(options.avatar, options.avatar_mesh).gltf.mesh_name
+            : std::string();
+    for (const std::string& name : gltf_mesh_names(options.garments.front()))
+      if (name != avatar_mesh) meshes.push_back(name);
+  }
+  if (options.garments.size() == 1 && meshes.size() > 1)
+    options.garments.assign(meshes.size(), options.garments.front());
+  if (meshes.size() != options.garments.size())
+    throw InputError(options.garments.front(), 0,
+                     fmt::format("{} --garment-mesh names for {} --garment files: give one per "
+                                 "garment, or several for one file",
+                                 meshes.size(), options.garments.size()));
+}
+
 std::vector<ShapeChange> measure_against_sources(const Validation& validation,
                                                  const std::vector<std::string>& sources) {
   std::vector<ShapeChange> changes;
@@ -85,6 +111,11 @@ void add_validate_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--max-listed", options->max_listed,
                   "How many pairs, faces or vertices each report list holds")
       ->capture_default_str();
+  cmd->add_option("--garment-mesh", options->garment_meshes,
+                  "glTF garment: the mesh or node to read, one per --garment; with one --garment, "
+                  "each name is a layer of that file; 'all' checks every mesh of the file but "
+                  "the avatar's as layers (default: the first skinned mesh, else the first mesh)")
+      ->take_all();
   cmd->add_option("--source", options->sources,
                   "The garment's source OBJ (same vertex order and faces; one per --garment, in "
                   "its order): report how the shape changed (report `garments[].shape`), and "
@@ -102,9 +133,11 @@ void add_validate_command(CLI::App& root, int& exit_code) {
       throw InputError(options->sources.front(), 0,
                        fmt::format("{} --source files for {} --garment files: give one per garment",
                                    options->sources.size(), options->garments.size()));
+    expand_garment_meshes(*options);
     ValidationOptions validation_options;
     validation_options.threshold = options->threshold;
     validation_options.avatar_mesh = options->avatar_mesh;
+    validation_options.garment_meshes = options->garment_meshes;
     // Where a source crosses itself, its garment inherits those pairs: counted apart.
     for (const std::string& source : options->sources) {
       std::vector<FacePair> inherited;

@@ -145,7 +145,9 @@ Validation validate_files(const std::vector<std::string>& garment_paths,
     throw InputError("--threshold", 0, "must be a finite number >= 0");
   Validation v;
   v.options = options;
-  for (const std::string& path : garment_paths) v.garments.push_back(read_checked_file(path));
+  for (std::size_t i = 0; i < garment_paths.size(); ++i)
+    v.garments.push_back(read_checked_file(
+        garment_paths[i], i < options.garment_meshes.size() ? options.garment_meshes[i] : ""));
   v.avatar = read_checked_file(avatar_path, options.avatar_mesh);
   std::vector<TriangleMesh> garments;
   for (const CheckedFile& g : v.garments) garments.push_back(g.mesh);

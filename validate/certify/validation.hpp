@@ -18,6 +18,8 @@ struct ValidationOptions {
   std::optional<double> threshold;
   /// glTF avatar: the mesh (or node) to check against; empty: read_gltf's default.
   std::string avatar_mesh;
+  /// Per garment, the glTF mesh (or node) to read; missing or empty: read_gltf's default.
+  std::vector<std::string> garment_meshes;
   /// Per garment, the self-intersecting face pairs it inherited (its input crossed itself
   /// there; (first < second), face rows of the checked mesh): counted apart, they do not
   /// fail the check. Missing or empty: every pair is new.

@@ -157,8 +157,10 @@ json garment_json(const Validation& v, int index, std::size_t max_listed) {
   self["untested_degenerate_neighbours"] = g.self_intersections.untested_degenerate_neighbours;
   // The pairs listed are the new ones; the garment's input already had the inherited ones.
   self["inherited"] = g.inherited_self_intersections;
+  const auto i = static_cast<std::size_t>(index);
   json out = {{"index", index},
-              {"path", v.garments[static_cast<std::size_t>(index)].path},
+              {"path", v.garments[i].path},
+              {"mesh", i < v.options.garment_meshes.size() ? v.options.garment_meshes[i] : ""},
               {"avatar_intersections", pairs_json(g.avatar_intersections, max_listed)},
               {"self_intersections", self},
               {"degenerate_faces",

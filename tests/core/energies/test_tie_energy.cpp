@@ -5,7 +5,8 @@
 
 using namespace gr;
 
-TEST_CASE("tie energy: gradient and Hessian match finite differences", "[energies][tie][grad][hess]") {
+TEST_CASE("tie energy: gradient and Hessian match finite differences",
+          "[energies][tie][grad][hess]") {
   const DofLayout layout{5};
   const TieEnergy energy({{{0, 3}}, {{1, 4}}, {{3, 2}}}, layout);
   std::srand(21);
