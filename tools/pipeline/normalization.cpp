@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
 #include <Eigen/SVD>
 
 #include "core/common/errors.hpp"
@@ -77,7 +78,26 @@ MatrixX3d to_lattice(const Similarity& similarity, const Eigen::Ref<const Matrix
   return mapped;
 }
 
+/// The largest side of the bounding box of `points`.
+double largest_side(const Eigen::Ref<const MatrixX3d>& points) {
+  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).maxCoeff();
+}
+
 }  // namespace
+
+void require_comparable_sizes(const Scene& scene, const NormalizedScene& normalized) {
+  const double ratio =
+      largest_side(normalized.garment.vertices) / largest_side(normalized.avatar.vertices);
+  if (ratio >= kMinGarmentToAvatarSize && ratio <= kMaxGarmentToAvatarSize) return;
+  throw InputError(
+      scene.garment_document.source_path, 0,
+      fmt::format("the garment ({:.4g} across in its file) is {:.3g} times the avatar's size "
+                  "({:.4g} across in its file) once placed on it; sizes within {:g} to {:g} "
+                  "times are retargeted: are the two files in the same units?",
+                  largest_side(scene.garment.mesh.vertices), ratio,
+                  largest_side(scene.avatar.mesh.vertices), kMinGarmentToAvatarSize,
+                  kMaxGarmentToAvatarSize));
+}
 
 Normalization normalize_scene(const Scene& scene) {
   Normalization n;

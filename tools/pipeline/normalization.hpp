@@ -63,4 +63,17 @@ struct NormalizedScene {
 /// rounded to multiples of `lattice` (a power of two; 0 keeps the mapped coordinates).
 NormalizedScene make_normalized_scene(const Scene& scene, double lattice = 0.0);
 
+/// Garment-to-avatar size ratios (largest bounding-box sides, placed on the avatar) the
+/// pipeline retargets: a garment a hundredth of the avatar spans about ten barrier supports,
+/// and one a hundred times its size covers nothing of it.
+constexpr double kMinGarmentToAvatarSize = 1e-2;
+constexpr double kMaxGarmentToAvatarSize = 1e2;
+
+/// Refuses a garment and avatar whose sizes in the normalized scene differ beyond
+/// [kMinGarmentToAvatarSize, kMaxGarmentToAvatarSize]: the solver's lengths (barrier
+/// support, steps, voxels, all fractions of the normalized avatar) cannot serve both, and
+/// such a pair is almost always two files in different units.
+/// @throw InputError giving both sizes in their files' units.
+void require_comparable_sizes(const Scene& scene, const NormalizedScene& normalized);
+
 }  // namespace gr

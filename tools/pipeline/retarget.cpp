@@ -42,11 +42,6 @@ constexpr int kNewtonLogEvery = 10;
 /// on the written garment is reported: the loops of a fitted garment sit within a few
 /// thousandths of theirs.
 constexpr double kLoopOffsetWarning = 0.03;
-/// Garment-to-avatar size ratios (largest bounding-box sides, placed on the avatar) the
-/// pipeline retargets: a garment a hundredth of the avatar spans about ten barrier supports,
-/// and one a hundred times its size covers nothing of it.
-constexpr double kMinGarmentToAvatarSize = 1e-2;
-constexpr double kMaxGarmentToAvatarSize = 1e2;
 
 /// What every stage reads and writes: the options, the progress lines and the result whose
 /// report each stage fills in.
@@ -125,58 +120,11 @@ double surface_area(const TriangleMesh& mesh) {
   return area;
 }
 
-/// Refuses a scene beyond the run's face and memory limits, before any costly work.
-void require_within_limits(Run& run, const Scene& scene) {
-  const RunLimits& limits = run.options.limits;
-  const auto garment_faces = static_cast<int>(scene.garment.mesh.faces.rows());
-  const auto avatar_faces = static_cast<int>(scene.avatar.mesh.faces.rows());
-  const auto too_many = [&](const std::string& path, const char* role, int faces) {
-    if (limits.max_faces > 0 && faces > limits.max_faces)
-      throw InputError(path, 0,
-                       fmt::format("the {} has {} faces, more than --max-faces {}", role, faces,
-                                   limits.max_faces));
-  };
-  too_many(run.options.inputs.garment, "garment", garment_faces);
-  too_many(run.options.inputs.avatar, "avatar", avatar_faces);
-  const double estimate = estimated_peak_memory_mb(garment_faces, avatar_faces);
-  run.report().estimated_memory_mb = estimate;
-  if (limits.max_memory_mb > 0.0 && estimate > limits.max_memory_mb)
-    throw InputError(
-        run.options.inputs.garment, 0,
-        fmt::format("a garment of {} faces on an avatar of {} faces needs about {:.0f} "
-                    "MB, more than --max-memory-mb {:g}",
-                    garment_faces, avatar_faces, estimate, limits.max_memory_mb));
-}
-
-/// The largest side of the bounding box of `points`.
-double largest_side(const MatrixX3d& points) {
-  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).maxCoeff();
-}
-
-/// Refuses a garment and avatar whose sizes in the normalized scene differ beyond what the
-/// solver's lengths (barrier support, steps, voxels, all fractions of the normalized avatar)
-/// can serve: such a pair is almost always two files in different units.
-void require_comparable_sizes(const Scene& scene, const NormalizedScene& normalized) {
-  const double garment = largest_side(normalized.garment.vertices);
-  const double avatar = largest_side(normalized.avatar.vertices);
-  const double ratio = garment / avatar;
-  if (ratio >= kMinGarmentToAvatarSize && ratio <= kMaxGarmentToAvatarSize) return;
-  const double garment_units = largest_side(scene.garment.mesh.vertices);
-  const double avatar_units = largest_side(scene.avatar.mesh.vertices);
-  throw InputError(
-      scene.garment_document.source_path, 0,
-      fmt::format("the garment ({:.4g} across in its file) is {:.3g} times the avatar's size "
-                  "({:.4g} across in its file) once placed on it; sizes within {:g} to {:g} "
-                  "times are retargeted: are the two files in the same units?",
-                  garment_units, ratio, avatar_units, kMinGarmentToAvatarSize,
-                  kMaxGarmentToAvatarSize));
-}
-
 /// Read: the scene's files and the shrink mode.
 Scene read_stage(Run& run) {
   const StageTimer timer;
   Scene scene = load_scene(run.options.inputs);
-  require_within_limits(run, scene);
+  run.report().estimated_memory_mb = require_within_limits(scene, run.options.limits);
   const bool has_skeletons = scene.source_skeleton.has_value();
   const ShrinkMode mode = run.options.shrink_mode.value_or(has_skeletons ? ShrinkMode::kSkeleton
                                                                          : ShrinkMode::kLevelset);

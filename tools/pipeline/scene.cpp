@@ -127,6 +127,27 @@ void check_input_files(const ScenePaths& paths, double max_input_mb) {
   for (const std::string& file : input_files(paths)) require_regular_file(file, limit);
 }
 
+double require_within_limits(const Scene& scene, const RunLimits& limits) {
+  const auto garment_faces = static_cast<int>(scene.garment.mesh.faces.rows());
+  const auto avatar_faces = static_cast<int>(scene.avatar.mesh.faces.rows());
+  const auto too_many = [&](const std::string& path, const char* role, int faces) {
+    if (limits.max_faces > 0 && faces > limits.max_faces)
+      throw InputError(path, 0,
+                       fmt::format("the {} has {} faces, more than --max-faces {}", role, faces,
+                                   limits.max_faces));
+  };
+  too_many(scene.garment_document.source_path, "garment", garment_faces);
+  too_many(scene.avatar_document.source_path, "avatar", avatar_faces);
+  const double estimate = estimated_peak_memory_mb(garment_faces, avatar_faces);
+  if (limits.max_memory_mb > 0.0 && estimate > limits.max_memory_mb)
+    throw InputError(
+        scene.garment_document.source_path, 0,
+        fmt::format("a garment of {} faces on an avatar of {} faces needs about {:.0f} MB, more "
+                    "than --max-memory-mb {:g}",
+                    garment_faces, avatar_faces, estimate, limits.max_memory_mb));
+  return estimate;
+}
+
 Scene load_scene(const ScenePaths& paths) {
   if (paths.garment.empty()) throw InputError("", 0, "no garment file given");
   if (paths.avatar.empty()) throw InputError("", 0, "no avatar file given");

@@ -10,6 +10,7 @@
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 #include "core/mesh/simulation_mesh.hpp"
+#include "tools/pipeline/run_control.hpp"
 
 namespace gr {
 
@@ -59,6 +60,12 @@ std::vector<std::string> input_files(const ScenePaths& paths);
 /// `max_input_mb` MB (see require_regular_file).
 /// @throw InputError naming the first file that is not.
 void check_input_files(const ScenePaths& paths, double max_input_mb);
+
+/// Refuses a scene beyond `limits`' face count (garment and avatar each) or estimated
+/// memory (estimated_peak_memory_mb), before any costly work.
+/// @return the memory estimate, MB.
+/// @throw InputError naming the file and the limit.
+double require_within_limits(const Scene& scene, const RunLimits& limits);
 
 /// Reads and checks every file of a scene. Garment and avatar may be OBJ or glTF (see
 /// read_gltf); without skeleton files, two skinned glTF files give the skeletons (their

@@ -1,8 +1,8 @@
 #include <filesystem>
 #include <string>
 
-#include <nlohmann/json.hpp>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
 #include "core/io/gltf_document.hpp"
@@ -16,11 +16,11 @@ TEST_CASE("validate picks glTF garment meshes, one per layer or every mesh of a 
   const std::string outfit = gr::test::shared_data("real/male-outfit.glb");
   const fs::path dir = gr::test::fresh_temp_dir("validate_meshes");
   const std::string report = (dir / "report.json").string();
-  const gr::test::CliRun two = gr::test::run_cli(
-      {"validate", "--garment", outfit, "--garment-mesh", "Wolf3D_Outfit_Top",
-       "Wolf3D_Outfit_Bottom", "--avatar", outfit, "--avatar-mesh", "Wolf3D_Body", "--report",
-       report},
-      "validate_two_meshes");
+  const gr::test::CliRun two =
+      gr::test::run_cli({"validate", "--garment", outfit, "--garment-mesh", "Wolf3D_Outfit_Top",
+                         "Wolf3D_Outfit_Bottom", "--avatar", outfit, "--avatar-mesh", "Wolf3D_Body",
+                         "--report", report},
+                        "validate_two_meshes");
   CAPTURE(two.err);
   CHECK(two.exit_code == gr::kExitIntersections);  // production outfits cross their body
   const auto json = nlohmann::json::parse(gr::test::read_text(report));
@@ -29,19 +29,19 @@ TEST_CASE("validate picks glTF garment meshes, one per layer or every mesh of a 
   CHECK(json["garments"][1]["mesh"] == "Wolf3D_Outfit_Bottom");
   CHECK(json["garment_pairs"].size() == 1);
 
-  const gr::test::CliRun all = gr::test::run_cli(
-      {"validate", "--garment", outfit, "--garment-mesh", "all", "--avatar", outfit,
-       "--avatar-mesh", "Wolf3D_Body", "--report", report},
-      "validate_all_meshes");
+  const gr::test::CliRun all =
+      gr::test::run_cli({"validate", "--garment", outfit, "--garment-mesh", "all", "--avatar",
+                         outfit, "--avatar-mesh", "Wolf3D_Body", "--report", report},
+                        "validate_all_meshes");
   const auto every = nlohmann::json::parse(gr::test::read_text(report));
   // Every mesh of the file but the body: outfit, hair, head, eyes, teeth.
   CHECK(every["garments"].size() == gr::gltf_mesh_names(outfit).size() - 1);
   for (const auto& g : every["garments"]) CHECK(g["mesh"] != "Wolf3D_Body");
 
-  const gr::test::CliRun mismatch = gr::test::run_cli(
-      {"validate", "--garment", outfit, "--garment", outfit, "--garment-mesh", "a", "b", "c",
-       "--avatar", outfit},
-      "validate_mesh_mismatch");
+  const gr::test::CliRun mismatch =
+      gr::test::run_cli({"validate", "--garment", outfit, "--garment", outfit, "--garment-mesh",
+                         "a", "b", "c", "--avatar", outfit},
+                        "validate_mesh_mismatch");
   CHECK(mismatch.exit_code == gr::kExitBadInput);
   CHECK_THAT(mismatch.err, Catch::Contains("3 --garment-mesh names for 2 --garment files"));
 }
