@@ -97,6 +97,11 @@ StagedFiles::~StagedFiles() {
 
 std::string StagedFiles::stage(const std::string& target) {
   const fs::path path(target);
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    throw OutputError(
+        fmt::format("{}: output folder '{}' does not exist", target, folder.string()));
   std::random_device entropy;
   const fs::path staging =
       path.parent_path() /

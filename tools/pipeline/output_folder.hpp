@@ -32,6 +32,7 @@ class StagedFiles {
   StagedFiles& operator=(const StagedFiles&) = delete;
 
   /// The staging path to write `target` at.
+  /// @throw OutputError when the target's folder does not exist.
   std::string stage(const std::string& target);
   /// Renames every staged file over its target. @throw OutputError when a rename fails.
   void commit();
