@@ -347,7 +347,8 @@ std::vector<std::string> copy_material_files(const ObjDocument& doc, const std::
                                              bool allow_external_assets) {
   namespace fs = std::filesystem;
   std::vector<std::string> warnings;
-  const fs::path source_dir = fs::path(doc.source_path).parent_path();
+  fs::path source_dir = fs::path(doc.source_path).parent_path();
+  if (source_dir.empty()) source_dir = ".";  // an OBJ named without its folder
   for (const auto& library : doc.material_libraries) {
     bool copied = false;
     copy_asset_file(source_dir, library, out_dir, allow_external_assets, warnings, copied);

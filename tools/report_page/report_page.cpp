@@ -151,6 +151,24 @@ std::vector<Section> retarget_sections(const ReportPageData& data) {
   }
   sections.push_back(ease);
 
+  // What the run repaired or kept of the input as given.
+  const double inherited = number_at(r, "/inherited_crossings/pairs").value_or(0);
+  const double split = number_at(r, "/split_non_manifold_edges/edges").value_or(0);
+  if (inherited > 0 || split > 0) {
+    Section repairs{"Input as given", {}, ""};
+    if (inherited > 0)
+      repairs.rows.push_back(
+          {"self-crossing face pairs kept (inherited)",
+           fmt::format("{:.0f}, {:.0f} still crossing", inherited,
+                       number_at(r, "/inherited_crossings/still_crossing").value_or(0))});
+    if (split > 0)
+      repairs.rows.push_back(
+          {"edges of more than two faces, split and welded back",
+           fmt::format("{:.0f} ({:.0f} vertex copies)", split,
+                       number_at(r, "/split_non_manifold_edges/vertex_copies").value_or(0))});
+    sections.push_back(repairs);
+  }
+
   Section clearance{"Clearance", {}, ""};
   clearance.rows.push_back(
       {"certified minimum (exact files)", format_length(certified_clearance(data.certificate), u)});

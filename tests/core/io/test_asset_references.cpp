@@ -104,6 +104,20 @@ TEST_CASE("Material files are copied only from inside the asset's folder", "[io]
     }
   }
 
+  SECTION("an OBJ named without its folder reads its assets from the working folder") {
+    const fs::path out = root / "out_relative";
+    fs::create_directories(out);
+    const fs::path before = fs::current_path();
+    fs::current_path(asset);
+    ObjDocument relative = document;
+    relative.source_path = "garment.obj";
+    std::vector<std::string> warnings;
+    CHECK_NOTHROW(warnings = copy_material_files(relative, out.string()));
+    fs::current_path(before);
+    CHECK(fs::is_regular_file(out / "tex.png"));
+    CHECK_FALSE(fs::exists(out / "link.png"));
+  }
+
   SECTION("with external assets allowed, links out are followed, the rest still refused") {
     const fs::path out = root / "out_external";
     fs::create_directories(out);
