@@ -70,6 +70,8 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
                              boundary_loop_vertices(scene.garment.faces), layout_);
   }
   if (!scene.ties.empty()) add_term<TieEnergy>(parameters.w_tie, scene.ties, layout_);
+  if (!scene.attachments.empty())
+    add_term<AttachmentEnergy>(parameters.w_attach, scene.attachments, layout_);
   if (stage == Stage::kFit)
     add_term<FitEnergy>(parameters.w_fit, scene.garment, scene.no_fit, *scene.distance_field,
                         parameters.fit_samples_per_face, layout_, scene.fit_offsets);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/energies/anchor_energy.hpp"
+#include "core/energies/attachment_energy.hpp"
 #include "core/energies/contact_energy.hpp"
 #include "core/energies/distance_field.hpp"
 #include "core/energies/energy_term.hpp"
@@ -49,6 +50,9 @@ struct GarmentScene {
   /// Garment vertex pairs held together (TieEnergy): the copies a split non-manifold edge
   /// made, each with its original.
   std::vector<std::array<int, 2>> ties;
+  /// Vertices of pieces laid on or through another piece, carried by its triangles
+  /// (AttachmentEnergy).
+  std::vector<Attachment> attachments;
 };
 
 /// The objective of Step 2 (inflation: x = [t, Vg], L_surf + L_contact + L_pos + the AL on

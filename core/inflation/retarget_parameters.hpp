@@ -47,6 +47,10 @@ struct RetargetParameters {
   /// welding them back in the written file moves little (the certificate checks the
   /// welded file).
   double w_tie = 1e6;
+  /// Pieces laid on or through another piece held at their place on it (AttachmentEnergy):
+  /// firm against the shape terms, so that a belt or a strap moves with the cloth it
+  /// crosses instead of sliding through it.
+  double w_attach = 1e4;
   double w_fit = 2.0;  ///< fit step only
   /// The fit's Newton step cap; 0: newton.max_iterations, as every inflation round.
   int fit_max_iterations = 0;

@@ -1,5 +1,7 @@
 #include "tools/pipeline/inherited_crossings.hpp"
 
+#include <limits>
+#include <map>
 #include <numeric>
 
 #include "core/mesh/vertex_neighbours.hpp"
@@ -80,6 +82,60 @@ InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair>
     ++crossings.tangled_vertices;
   }
   return crossings;
+}
+
+std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
+                                               const std::vector<FacePair>& pairs, int& pieces) {
+  pieces = 0;
+  std::vector<Attachment> attachments;
+  if (pairs.empty()) return attachments;
+  const auto n = static_cast<std::size_t>(garment.vertices.rows());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto& F = garment.faces;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    unite(parent, F(f, 0), F(f, 1));
+    unite(parent, F(f, 0), F(f, 2));
+  }
+  const auto piece_of_face = [&](int f) { return find_root(parent, F(f, 0)); };
+  std::vector<int> face_count(n, 0);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    ++face_count[static_cast<std::size_t>(piece_of_face(static_cast<int>(f)))];
+  // Each crossing piece follows the first larger piece it crosses (ties: the lower root).
+  std::map<int, int> host_of;
+  for (const FacePair& p : pairs) {
+    int a = piece_of_face(p.first), b = piece_of_face(p.second);
+    if (a == b) continue;
+    const auto size = [&](int piece) { return face_count[static_cast<std::size_t>(piece)]; };
+    if (size(a) > size(b) || (size(a) == size(b) && a < b)) std::swap(a, b);
+    host_of.emplace(a, b);
+  }
+  for (const auto& [piece, host] : host_of) {
+    if (host_of.count(host) && host_of.at(host) == piece) continue;  // each follows the other
+    ++pieces;
+    std::vector<int> host_faces;
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      if (piece_of_face(static_cast<int>(f)) == host) host_faces.push_back(static_cast<int>(f));
+    for (std::size_t v = 0; v < n; ++v) {
+      if (find_root(parent, static_cast<int>(v)) != piece) continue;
+      const Vector3d x = garment.vertices.row(static_cast<Eigen::Index>(v)).transpose();
+      Attachment best;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const int f : host_faces) {
+        const Vector3d centroid = (garment.vertices.row(F(f, 0)) + garment.vertices.row(F(f, 1)) +
+                                   garment.vertices.row(F(f, 2)))
+                                      .transpose() /
+                                  3.0;
+        const double d = (x - centroid).squaredNorm();
+        if (d < nearest) {
+          nearest = d;
+          best = {static_cast<int>(v), {F(f, 0), F(f, 1), F(f, 2)}, x - centroid};
+        }
+      }
+      attachments.push_back(best);
+    }
+  }
+  return attachments;
 }
 
 }  // namespace gr

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/common/types.hpp"
+#include "core/energies/attachment_energy.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 
 namespace gr {
@@ -17,6 +18,8 @@ struct InheritedCrossings {
   std::vector<int> tangles;
   int tangle_count = 0;
   int tangled_vertices = 0;
+  /// Vertices of pieces that cross another piece, attached to it (attach_crossing_pieces).
+  std::vector<Attachment> attachments;
 };
 
 /// The tangles of `pairs`: the vertices of each crossing face and those within `rings`
@@ -26,5 +29,15 @@ struct InheritedCrossings {
 /// @param pairs face rows of `garment`.
 InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair> pairs, int rings,
                               const std::vector<std::vector<int>>& groups = {});
+
+/// Pieces (connected parts of the garment) that cross another piece as given, a belt
+/// through a dress, a strap through a shirt, follow it: every vertex of the smaller piece
+/// of a crossing pair is attached to the triangle of the other piece whose centroid is
+/// nearest, keeping its offset from that centroid. Crossings within one piece attach
+/// nothing.
+/// @param pairs face rows of `garment`.
+/// @param pieces set to the number of pieces attached.
+std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
+                                               const std::vector<FacePair>& pairs, int& pieces);
 
 }  // namespace gr

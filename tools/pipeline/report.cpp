@@ -149,6 +149,7 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"still_crossing", r.inherited.still_crossing},
       {"tangles", r.inherited.tangles},
       {"tangled_vertices", r.inherited.tangled_vertices},
+      {"attached_pieces", r.inherited.attached_pieces},
       {"face_pairs", pairs},
       {"meaning",
        "face pairs (0-based input faces) where the garment crossed itself as given: kept as "

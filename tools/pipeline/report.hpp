@@ -51,6 +51,7 @@ struct InheritedReport {
   int tangles = 0;                       ///< groups of crossings, each left out of self contact
   int tangled_vertices = 0;              ///< vertices in them
   int still_crossing = 0;                ///< of the pairs, those the written garment still has
+  int attached_pieces = 0;               ///< pieces crossing another piece, attached to it
   std::vector<FacePair> document_pairs;  ///< the pairs as input face ids (0-based)
 };
 

@@ -162,6 +162,8 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene, InheritedCrossings
   for (const auto& [copy, original] : scene.garment_ties) split_sites.push_back({copy, original});
   inherited =
       tangles_of(normalized.garment, std::move(self.pairs.pairs), kTangleRings, split_sites);
+  inherited.attachments =
+      attach_crossing_pieces(normalized.garment, inherited.pairs, report.inherited.attached_pieces);
   report.split_edges = scene.split_edges;
   report.split_copies = static_cast<int>(scene.garment_ties.size());
   InheritedReport& kept = report.inherited;
@@ -296,6 +298,7 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
   scene.distance_field = &distance_field;
   scene.garment_tangles = in.inherited.tangles;
   scene.ties = in.scene.garment_ties;
+  scene.attachments = in.inherited.attachments;
   solver.fit_faces = fit_face_mask(
       normalized.garment.faces, static_cast<int>(normalized.garment.vertices.rows()), scene.no_fit);
   report.fit_faces =
