@@ -31,15 +31,15 @@ AttachmentEnergy::AttachmentEnergy(std::vector<Attachment> attachments, const Do
 
 Vector3d AttachmentEnergy::residual(const Attachment& a,
                                     const Eigen::Ref<const MatrixX3d>& V) const {
-  const Vector3d centroid = (V.row(a.triangle[0]) + V.row(a.triangle[1]) + V.row(a.triangle[2]))
-                                .transpose() /
-                            3.0;
+  const Vector3d centroid =
+      (V.row(a.triangle[0]) + V.row(a.triangle[1]) + V.row(a.triangle[2])).transpose() / 3.0;
   return V.row(a.vertex).transpose() - centroid - a.offset;
 }
 
 double AttachmentEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
-  return assembly_.value(
-      [&](int e) { return 0.5 * residual(attachments_[static_cast<std::size_t>(e)], V).squaredNorm(); });
+  return assembly_.value([&](int e) {
+    return 0.5 * residual(attachments_[static_cast<std::size_t>(e)], V).squaredNorm();
+  });
 }
 
 void AttachmentEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
