@@ -122,7 +122,7 @@ TriangleMesh read_source_body(const std::string& path, const NormalizedScene& no
 }
 
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
-                                bool list_given, const std::string& source_body_path, bool skirt,
+                                bool list_given, const TriangleMesh* source_body, bool skirt,
                                 const std::string& out_dir, const InferenceOptions& options,
                                 InferenceReport& report) {
   const TriangleMesh& garment = normalized.garment;
@@ -136,11 +136,9 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
     return scene.no_fit;
   }
   require_root_joint(options, normalized);
-  std::optional<TriangleMesh> body;
-  if (!source_body_path.empty()) body = read_source_body(source_body_path, normalized);
   report.no_fit_inferred = true;
   report.no_fit_options = options.no_fit;
-  report.no_fit = infer_no_fit(garment, body ? &*body : nullptr,
+  report.no_fit = infer_no_fit(garment, source_body,
                                normalized.source_skeleton ? &*normalized.source_skeleton : nullptr,
                                skirt && normalized.source_skeleton, options.no_fit);
   report.no_fit.snug_offset /= normalized.normalization.garment_to_scene.scale;

@@ -64,14 +64,14 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
 TriangleMesh read_source_body(const std::string& path, const NormalizedScene& normalized);
 
 /// The no-fit list a run uses, as welded garment vertex ids: the scene's when one was given
-/// (its file named in ScenePaths::no_fit), else inferred (from `source_body_path` when not
-/// empty, an OBJ in the garment's frame) and written to `out_dir`/no-fit.txt as 0-based
-/// garment OBJ vertex ids, recorded in `report`.
-/// @throw InputError when the source body cannot be read or the root joint is not a joint of
-///        the skeletons; OutputError when the list cannot
-///        be written; InputError from find_leg_joints for a skirt whose skeleton has no legs.
+/// (its file named in ScenePaths::no_fit), else inferred (from `source_body` when not null,
+/// see read_source_body) and written to `out_dir`/no-fit.txt as 0-based garment OBJ vertex
+/// ids, recorded in `report`.
+/// @throw InputError when the root joint is not a joint of the skeletons; OutputError when
+///        the list cannot be written; InputError from find_leg_joints for a skirt whose
+///        skeleton has no legs.
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
-                                bool list_given, const std::string& source_body_path, bool skirt,
+                                bool list_given, const TriangleMesh* source_body, bool skirt,
                                 const std::string& out_dir, const InferenceOptions& options,
                                 InferenceReport& report);
 

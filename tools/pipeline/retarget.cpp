@@ -209,13 +209,12 @@ NormalizedScene normalize_stage(Run& run, const Scene& scene, InheritedCrossings
 /// the ease of a roomy coat's fitted vertices on the shared source bodies.
 constexpr double kMaxEaseBand = 0.3;
 
-/// The fit mode, and the garment's ease on its source body when one is given. The distance
-/// band the fit reads is widened to reach every target (ease up to twice the largest
-/// source ease of a fitted vertex).
-SourceEase ease_stage(Run& run, const Inputs& in) {
+/// The fit mode, and the garment's ease on its source body (normalized; null: none given).
+/// The distance band the fit reads is widened to reach every target (ease up to twice the
+/// largest source ease of a fitted vertex).
+SourceEase ease_stage(Run& run, const Inputs& in, const TriangleMesh* body) {
   EaseReport& ease = run.report().ease;
-  const std::string& body_path = run.options.inputs.source_body;
-  ease.source_known = !body_path.empty();
+  ease.source_known = body != nullptr;
   ease.fit = run.options.fit_mode.value_or(ease.source_known ? FitMode::kEase : FitMode::kTight);
   const double voxel = run.parameters().voxel_size;
   ease.distance_band = kDistanceBand;
@@ -230,8 +229,7 @@ SourceEase ease_stage(Run& run, const Inputs& in) {
           "the garment was made on to keep its ease");
     return {};
   }
-  const TriangleMesh body = read_source_body(body_path, in.normalized);
-  SourceEase source = measure_source_ease(in.normalized.garment, body);
+  SourceEase source = measure_source_ease(in.normalized.garment, *body);
   ease.filled_vertices = source.filled;
   if (ease.fit == FitMode::kTight) return source;
   std::vector<bool> listed(source.distance.size(), false);
@@ -710,16 +708,20 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Inputs in;
   in.scene = read_stage(run);
   in.normalized = normalize_stage(run, in.scene, in.inherited);
+  // The source body gives the no-fit inference and the ease: read once.
+  std::optional<TriangleMesh> source_body;
+  if (!options.inputs.source_body.empty())
+    source_body = read_source_body(options.inputs.source_body, in.normalized);
   in.scene.no_fit = no_fit_for_run(in.scene, in.normalized, !options.inputs.no_fit.empty(),
-                                   options.inputs.source_body, options.skirt, run.out.string(),
-                                   options.inference, report.inferred);
+                                   source_body ? &*source_body : nullptr, options.skirt,
+                                   run.out.string(), options.inference, report.inferred);
   if (report.inferred.no_fit_inferred) {
     report.inferred.no_fit_path = folder.final_path("no-fit.txt");
     run.progress.log("no-fit", "inferred ({}): {} vertices, {} faces free, written to {}",
                      report.inferred.no_fit.method, report.inferred.no_fit.vertices.size(),
                      report.inferred.no_fit_faces, report.inferred.no_fit_path);
   }
-  const SourceEase source_ease = ease_stage(run, in);
+  const SourceEase source_ease = ease_stage(run, in, source_body ? &*source_body : nullptr);
   control.check("read");
 
   const StageTimer shrink_timer;

@@ -126,13 +126,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   ResultFolder folder(options.out_dir, input_files(options.inputs));
   const Scene scene = load_scene(options.inputs);
   check_options(options, scene);
-  for (const auto& [role, faces] : {std::pair{"garment", scene.garment.mesh.faces.rows()},
-                                    std::pair{"avatar", scene.avatar.mesh.faces.rows()}})
-    if (options.limits.max_faces > 0 && faces > options.limits.max_faces)
-      throw InputError(
-          role == std::string("garment") ? options.inputs.garment : options.inputs.avatar, 0,
-          fmt::format("the {} has {} faces, more than --max-faces {}", role, faces,
-                      options.limits.max_faces));
+  require_within_limits(scene, options.limits);
   // The caller's progress, then the run's limits.
   const ProgressCallback progress = [&](const std::string& stage, double fraction) {
     if (options.progress && !options.progress(stage, fraction)) return false;
