@@ -12,34 +12,43 @@
 #include "core/broad_phase/pair_separation.hpp"
 #include "core/broad_phase/refitted_tree.hpp"
 #include "core/candidates/self_contact_search.hpp"
+#include "core/distance/edge_edge_distance.hpp"
+#include "core/distance/point_triangle_distance.hpp"
 
 namespace gr {
+
+std::array<int, 5> self_pair_key(const PointTriangleCandidate& pair) {
+  std::array<int, 3> t = pair.triangle;
+  std::sort(t.begin(), t.end());
+  return {0, pair.point, t[0], t[1], t[2]};
+}
+
+std::array<int, 5> self_pair_key(const EdgeEdgeCandidate& pair) {
+  std::array<int, 2> a{std::min(pair.edge_a[0], pair.edge_a[1]),
+                       std::max(pair.edge_a[0], pair.edge_a[1])};
+  std::array<int, 2> b{std::min(pair.edge_b[0], pair.edge_b[1]),
+                       std::max(pair.edge_b[0], pair.edge_b[1])};
+  if (b < a) std::swap(a, b);
+  return {1, a[0], a[1], b[0], b[1]};
+}
+
 namespace {
 
-/// Leaves out the self pairs whose vertices all lie in one tangle (ContactMesh::
-/// garment_tangles).
-void drop_tangled_pairs(const std::vector<int>& tangles, std::vector<PointTriangleCandidate>& pt,
-                        std::vector<EdgeEdgeCandidate>& ee) {
-  if (tangles.empty()) return;
-  const auto same_tangle = [&](std::initializer_list<int> vertices) {
-    const int first = tangles[static_cast<std::size_t>(*vertices.begin())];
-    if (first < 0) return false;
-    for (const int v : vertices)
-      if (tangles[static_cast<std::size_t>(v)] != first) return false;
-    return true;
+/// Leaves out the self pairs that are not modelled (ContactMesh::unmodelled_self_pairs).
+void drop_unmodelled_pairs(const std::vector<std::array<int, 5>>& unmodelled,
+                           std::vector<PointTriangleCandidate>& pt,
+                           std::vector<EdgeEdgeCandidate>& ee) {
+  if (unmodelled.empty()) return;
+  const auto listed = [&](const std::array<int, 5>& key) {
+    return std::binary_search(unmodelled.begin(), unmodelled.end(), key);
   };
   pt.erase(
       std::remove_if(pt.begin(), pt.end(),
-                     [&](const PointTriangleCandidate& c) {
-                       return same_tangle({c.point, c.triangle[0], c.triangle[1], c.triangle[2]});
-                     }),
+                     [&](const PointTriangleCandidate& c) { return listed(self_pair_key(c)); }),
       pt.end());
-  ee.erase(
-      std::remove_if(ee.begin(), ee.end(),
-                     [&](const EdgeEdgeCandidate& c) {
-                       return same_tangle({c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]});
-                     }),
-      ee.end());
+  ee.erase(std::remove_if(ee.begin(), ee.end(),
+                          [&](const EdgeEdgeCandidate& c) { return listed(self_pair_key(c)); }),
+           ee.end());
 }
 
 using Box = Eigen::AlignedBox3d;
@@ -199,28 +208,36 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
   const auto keep_ee = [&](const std::array<int, 2>& a, const std::array<int, 2>& b) {
     return pair_may_come_within(V0, V1, {a[0], a[1], b[0], b[1]}, 2, threshold);
   };
+  const auto meets_avatar = [](const std::vector<char>& mask, int element) {
+    return mask.empty() || mask[static_cast<std::size_t>(element)] != 0;
+  };
+  const auto& point_meets = mesh_.garment_point_meets_avatar;
+  const auto& edge_meets = mesh_.garment_edge_meets_avatar;
+  const auto& face_meets = mesh_.garment_face_meets_avatar;
   Candidates out;
   std::vector<PT> garment_avatar, self_pt, avatar_garment;
   std::vector<EE> edges_ga, self_ee;
   tbb::parallel_invoke(
       [&] {
-        garment_avatar = garment_points.collect_pairs<PT>(avatar.faces,
-                                                          [&](int v, int f, std::vector<PT>& sink) {
-                                                            if (keep_pt(v, face(af, f)))
-                                                              sink.push_back({v, face(af, f)});
-                                                          });
+        garment_avatar = garment_points.collect_pairs<PT>(
+            avatar.faces, [&](int v, int f, std::vector<PT>& sink) {
+              if (meets_avatar(point_meets, v) && keep_pt(v, face(af, f)))
+                sink.push_back({v, face(af, f)});
+            });
       },
       [&] {
         avatar_garment = avatar.points.collect_pairs<PT>(
             garment_faces, [&](int i, int f, std::vector<PT>& sink) {
               const int v = avatar_points_[static_cast<std::size_t>(i)];
-              if (keep_pt(v, face(gf, f))) sink.push_back({v, face(gf, f)});
+              if (meets_avatar(face_meets, f) && keep_pt(v, face(gf, f)))
+                sink.push_back({v, face(gf, f)});
             });
       },
       [&] {
         edges_ga =
             garment_edges.collect_pairs<EE>(avatar.edges, [&](int a, int b, std::vector<EE>& sink) {
-              if (keep_ee(edge(ge, a), edge(ae, b))) sink.push_back({edge(ge, a), edge(ae, b)});
+              if (meets_avatar(edge_meets, a) && keep_ee(edge(ge, a), edge(ae, b)))
+                sink.push_back({edge(ge, a), edge(ae, b)});
             });
       },
       [&] {
@@ -230,7 +247,7 @@ Candidates CandidateFinder::box_pairs(const std::vector<Box>& vertex_boxes, doub
               std::make_unique<SelfContactSearch>(mesh_, V0.topRows(mesh_.garment_vertex_count));
         self_->find(garment_point_boxes, garment_face_boxes, garment_edge_boxes, V0, V1, threshold,
                     self_pt, self_ee);
-        drop_tangled_pairs(mesh_.garment_tangles, self_pt, self_ee);
+        drop_unmodelled_pairs(mesh_.unmodelled_self_pairs, self_pt, self_ee);
       });
   out.point_triangle = std::move(garment_avatar);
   out.point_triangle.insert(out.point_triangle.end(), self_pt.begin(), self_pt.end());
@@ -327,6 +344,43 @@ Candidates find_candidates(const ContactMesh& mesh, const Eigen::Ref<const Matri
 Candidates find_swept_candidates(const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& V0,
                                  const Eigen::Ref<const MatrixX3d>& V1, double inflation_radius) {
   return CandidateFinder(mesh).find_swept(V0, V1, inflation_radius);
+}
+
+std::vector<std::array<int, 5>> tangled_pairs_closer_than(
+    const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap) {
+  const std::vector<int>& tangles = mesh.garment_tangles;
+  if (tangles.empty() || !mesh.self_contact) return {};
+  // The garment alone, every self pair searched.
+  ContactMesh self = mesh;
+  self.avatar_vertex_count = 0;
+  self.avatar_faces.resize(0, 3);
+  self.avatar_edges.resize(0, 2);
+  self.cull_fold_free = false;
+  self.unmodelled_self_pairs.clear();
+  const Candidates near = find_candidates(self, garment, gap);
+  const auto one_tangle = [&](std::initializer_list<int> vertices) {
+    const int first = tangles[static_cast<std::size_t>(*vertices.begin())];
+    if (first < 0) return false;
+    for (const int v : vertices)
+      if (tangles[static_cast<std::size_t>(v)] != first) return false;
+    return true;
+  };
+  const auto at = [&](int v) -> Vector3d { return garment.row(v).transpose(); };
+  const double gap_sq = gap * gap;
+  std::vector<std::array<int, 5>> keys;
+  for (const PointTriangleCandidate& c : near.point_triangle)
+    if (one_tangle({c.point, c.triangle[0], c.triangle[1], c.triangle[2]}) &&
+        point_triangle_distance_sq(at(c.point), at(c.triangle[0]), at(c.triangle[1]),
+                                   at(c.triangle[2])) < gap_sq)
+      keys.push_back(self_pair_key(c));
+  for (const EdgeEdgeCandidate& c : near.edge_edge)
+    if (one_tangle({c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]}) &&
+        edge_edge_distance_sq(at(c.edge_a[0]), at(c.edge_a[1]), at(c.edge_b[0]), at(c.edge_b[1])) <
+            gap_sq)
+      keys.push_back(self_pair_key(c));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
 }
 
 }  // namespace gr

@@ -33,6 +33,11 @@ struct Candidates {
   bool empty() const { return size() == 0; }
 };
 
+/// Keys that name a self pair whatever the order of its vertices: {0, point, triangle
+/// sorted} and {1, the two edges, each sorted, the smaller first}.
+std::array<int, 5> self_pair_key(const PointTriangleCandidate& pair);
+std::array<int, 5> self_pair_key(const EdgeEdgeCandidate& pair);
+
 class SelfContactSearch;
 
 /// Finds candidates (as find_candidates and find_swept_candidates below) for one contact
@@ -122,5 +127,12 @@ Candidates find_candidates(const ContactMesh& mesh, const Eigen::Ref<const Matri
 /// @throw std::invalid_argument when V0 or V1 has the wrong row count.
 Candidates find_swept_candidates(const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& V0,
                                  const Eigen::Ref<const MatrixX3d>& V1, double inflation_radius);
+
+/// The self pairs (sharing no vertex, all of their vertices in one tangle of
+/// mesh.garment_tangles) closer than `gap` at the garment positions `garment`
+/// (#garment vertices×3): sorted self_pair_key values, for ContactMesh::
+/// unmodelled_self_pairs.
+std::vector<std::array<int, 5>> tangled_pairs_closer_than(
+    const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap);
 
 }  // namespace gr

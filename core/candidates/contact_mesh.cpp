@@ -1,5 +1,7 @@
 #include "core/candidates/contact_mesh.hpp"
 
+#include <algorithm>
+#include <map>
 #include <string>
 
 #include "core/common/errors.hpp"
@@ -41,6 +43,32 @@ ContactMesh ContactMesh::build(const TriangleMesh& garment, const TriangleMesh& 
   }
   mesh.avatar_edges = unique_edges(mesh.avatar_faces);
   return mesh;
+}
+
+void ContactMesh::leave_out_of_avatar_contact(const std::vector<int>& faces) {
+  if (faces.empty()) return;
+  garment_face_meets_avatar.assign(static_cast<std::size_t>(garment_faces.rows()), 1);
+  for (const int f : faces) {
+    if (f < 0 || f >= garment_faces.rows())
+      throw InputError("", 0, "garment face " + std::to_string(f) + " does not exist");
+    garment_face_meets_avatar[static_cast<std::size_t>(f)] = 0;
+  }
+  garment_point_meets_avatar.assign(static_cast<std::size_t>(garment_vertex_count), 0);
+  std::map<std::pair<int, int>, char> kept_edges;
+  for (Eigen::Index f = 0; f < garment_faces.rows(); ++f) {
+    if (!garment_face_meets_avatar[static_cast<std::size_t>(f)]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = garment_faces(f, k), b = garment_faces(f, (k + 1) % 3);
+      garment_point_meets_avatar[static_cast<std::size_t>(a)] = 1;
+      kept_edges[{std::min(a, b), std::max(a, b)}] = 1;
+    }
+  }
+  garment_edge_meets_avatar.assign(static_cast<std::size_t>(garment_edges.rows()), 0);
+  for (Eigen::Index e = 0; e < garment_edges.rows(); ++e) {
+    const int a = garment_edges(e, 0), b = garment_edges(e, 1);
+    garment_edge_meets_avatar[static_cast<std::size_t>(e)] =
+        kept_edges.count({std::min(a, b), std::max(a, b)}) ? 1 : 0;
+  }
 }
 
 }  // namespace gr

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/common/types.hpp"
@@ -23,10 +24,19 @@ struct ContactMesh {
   /// during the motion at hand (candidates/fold_free_regions.hpp); off: search them all.
   bool cull_fold_free = true;
   /// Per garment vertex, the tangle it belongs to (-1: none): where the garment crosses
-  /// itself as given, the crossing faces and their neighbourhood. A self pair whose
-  /// vertices all lie in one tangle is not modelled: it may cross already, and the barrier
-  /// and CCD leave inherited crossings as they are. Empty: no tangle.
+  /// itself as given, the crossing faces and their neighbourhood. Empty: no tangle.
   std::vector<int> garment_tangles;
+  /// Self pairs that are not modelled (sorted self_pair_key values): pairs of one tangle
+  /// that touch, or all but touch, at the start (tangled_pairs_closer_than). Every other
+  /// pair stays apart under the barrier and CCD, and no crossing face pair can appear or
+  /// go without one of its point–triangle or edge–edge pairs meeting: the crossings the
+  /// garment has as given are kept as they are, and none is added.
+  std::vector<std::array<int, 5>> unmodelled_self_pairs;
+  /// Per garment vertex, garment edge (rows of garment_edges) and garment face: whether it
+  /// takes part in garment–avatar pairs (leave_out_of_avatar_contact). Empty: all do.
+  std::vector<char> garment_point_meets_avatar;
+  std::vector<char> garment_edge_meets_avatar;
+  std::vector<char> garment_face_meets_avatar;
 
   int vertex_count() const { return garment_vertex_count + avatar_vertex_count; }
 
@@ -35,6 +45,12 @@ struct ContactMesh {
   /// take part in no pair.
   /// @throw InputError when a face refers to a missing vertex or a selected avatar face
   ///        does not exist.
+  /// Leaves garment faces (rows of garment_faces) out of garment–avatar pairs: faces the
+  /// avatar passes through as given, such as a cap around a bone. An edge or vertex still
+  /// meets the avatar when a face that is kept holds it. Self pairs are unchanged.
+  /// @throw InputError when a face does not exist.
+  void leave_out_of_avatar_contact(const std::vector<int>& faces);
+
   static ContactMesh build(const TriangleMesh& garment, const TriangleMesh& avatar,
                            bool self_contact, const std::vector<int>& avatar_faces_used = {});
 };

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/candidates/candidates.hpp"
 #include "core/mesh/boundary_loops.hpp"
 #include "core/solver/sparse_pattern.hpp"
 
@@ -27,11 +28,18 @@ const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage sta
   return scene;
 }
 
+/// Self pairs of a tangle closer than this fraction of dhat at the start are not modelled:
+/// their barrier would be unbounded or all but. Any pair further apart is.
+constexpr double kTouchingGap = 1e-3;
+
 ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters& parameters) {
   ContactMesh mesh = ContactMesh::build(scene.garment, scene.avatar, parameters.self_contact,
                                         scene.avatar_faces_used);
   mesh.cull_fold_free = !parameters.self_contact_everywhere;
   mesh.garment_tangles = scene.garment_tangles;
+  mesh.unmodelled_self_pairs =
+      tangled_pairs_closer_than(mesh, scene.garment.vertices, kTouchingGap * parameters.dhat);
+  mesh.leave_out_of_avatar_contact(scene.faces_without_avatar_contact);
   return mesh;
 }
 

@@ -45,8 +45,11 @@ struct GarmentScene {
   /// units, FitEnergy's offsets); empty: the tight fit, onto the avatar.
   std::vector<double> fit_offsets;
   /// Per garment vertex, its tangle (ContactMesh::garment_tangles): self pairs inside one
-  /// are not modelled. Empty: the garment does not cross itself.
+  /// that touch at the start are not modelled. Empty: the garment does not cross itself.
   std::vector<int> garment_tangles;
+  /// Garment faces left out of garment–avatar contact (ContactMesh::
+  /// leave_out_of_avatar_contact): faces the avatar passes through as given.
+  std::vector<int> faces_without_avatar_contact;
   /// Garment vertex pairs held together (TieEnergy): the copies a split non-manifold edge
   /// made, each with its original.
   std::vector<std::array<int, 2>> ties;

@@ -321,40 +321,54 @@ std::vector<std::string> gltf_mesh_names(const std::string& path) {
   return names;
 }
 
-GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
-  auto shared = std::make_shared<GltfModel>();
-  shared->model = load_model(path);
-  const tinygltf::Model& model = shared->model;
-  const NodeGraph graph = node_graph(model, path);
-  const int node_index = choose_node(model, graph, mesh_name, path);
+namespace {
+
+/// The nodes read_gltf_meshes reads: those named, in the order named, else every node
+/// whose mesh the first skinned node's skin drives, else the first node with a mesh.
+std::vector<int> choose_nodes(const tinygltf::Model& model, const NodeGraph& graph,
+                              const std::vector<std::string>& names, const std::string& path) {
+  std::vector<int> nodes;
+  for (const std::string& name : names) {
+    const int node = choose_node(model, graph, name, path);
+    if (std::find(nodes.begin(), nodes.end(), node) != nodes.end())
+      throw InputError(path, 0, fmt::format("mesh '{}' is named twice", name));
+    nodes.push_back(node);
+  }
+  if (!names.empty()) return nodes;
+  const int first = choose_node(model, graph, "", path);
+  const int skin = model.nodes[static_cast<std::size_t>(first)].skin;
+  if (skin < 0) return {first};
+  for (const int node : graph.order) {
+    const auto& info = model.nodes[static_cast<std::size_t>(node)];
+    if (info.mesh >= 0 && info.skin == skin &&
+        std::find(nodes.begin(), nodes.end(), node) == nodes.end())
+      nodes.push_back(node);
+  }
+  return nodes;
+}
+
+/// Appends the TRIANGLES primitives of the mesh that `node_index` places to `asset`.
+void append_node_mesh(const tinygltf::Model& model, const NodeGraph& graph, int node_index,
+                      const std::string& path, GltfAsset& asset, std::vector<Vector3d>& positions,
+                      std::vector<Vector3d>& normals, int& skipped) {
   const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
   const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
-
-  GltfAsset asset;
   ObjDocument& document = asset.document;
   GltfDocument& gltf = asset.gltf;
-  document.source_path = path;
-  gltf.model = shared;
-  gltf.mesh = node.mesh;
-  gltf.mesh_name = mesh.name.empty() ? node.name : mesh.name;
-  if (node.skin >= 0) gltf.skin = read_skin(model, node.skin, graph, path);
-
-  std::vector<Vector3d> positions;
-  std::vector<Vector3d> normals;
-  std::vector<int> skipped;
+  const std::string mesh_name = mesh.name.empty() ? node.name : mesh.name;
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& primitive = mesh.primitives[p];
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
     if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
         mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
-      skipped.push_back(static_cast<int>(p));
+      ++skipped;
       continue;
     }
     if (mode != TINYGLTF_MODE_TRIANGLES)
       throw InputError(path, 0,
                        fmt::format("mesh '{}' primitive {} has mode {} ({}); only TRIANGLES is "
                                    "supported",
-                                   gltf.mesh_name, p, mode,
+                                   mesh_name, p, mode,
                                    mode == TINYGLTF_MODE_TRIANGLE_STRIP ? "triangle strip"
                                    : mode == TINYGLTF_MODE_TRIANGLE_FAN ? "triangle fan"
                                                                         : "unknown"));
@@ -363,11 +377,12 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
     const auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end())
       throw InputError(path, 0,
-                       fmt::format("mesh '{}' primitive {} has no POSITION", gltf.mesh_name, p));
+                       fmt::format("mesh '{}' primitive {} has no POSITION", mesh_name, p));
     const std::size_t count = accessor_count(model, position_it->second, path);
     const std::vector<double> xyz =
         read_accessor(model, position_it->second, TINYGLTF_TYPE_VEC3, count, path, "POSITION");
     GltfPrimitive part;
+    part.mesh = node.mesh;
     part.source = static_cast<int>(p);
     part.first_position = static_cast<int>(positions.size());
     part.position_count = static_cast<int>(count);
@@ -376,7 +391,8 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       gltf.skin->weights.conservativeResize(static_cast<Eigen::Index>(gltf.skin->joints.size()),
                                             part.first_position + part.position_count);
       gltf.skin->weights.rightCols(part.position_count).setZero();
-      add_influences(model, primitive, part.first_position, count, *gltf.skin, path);
+      if (node.skin >= 0)
+        add_influences(model, primitive, part.first_position, count, *gltf.skin, path);
     }
 
     std::vector<double> normal;
@@ -387,12 +403,14 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       uv = read_accessor(model, it->second, TINYGLTF_TYPE_VEC2, count, path, "TEXCOORD_0");
     if (primitive.attributes.count("TANGENT")) gltf.has_tangents = true;
 
+    if (!normal.empty()) normals.resize(positions.size(), Vector3d::Zero());
+    if (!uv.empty()) document.texcoords.resize(positions.size(), {0.0, 0.0, 0.0});
     const Eigen::Matrix4d& node_world = graph.world[static_cast<std::size_t>(node_index)];
     for (std::size_t v = 0; v < count; ++v) {
       // A skinned mesh sits where its joints put it (the node's own transform is ignored,
       // as the glTF specification says); unweighted vertices stay in the node's frame.
       Eigen::Matrix4d to_world = node_world;
-      if (gltf.skin) {
+      if (gltf.skin && node.skin >= 0) {
         const auto column =
             static_cast<Eigen::Index>(part.first_position) + static_cast<Eigen::Index>(v);
         // Summed in joint order: a vectorized sum's order depends on where the column
@@ -415,7 +433,7 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
         throw InputError(path, 0,
                          fmt::format("mesh '{}': vertex {} is not finite once its node "
                                      "and joint transforms are applied",
-                                     gltf.mesh_name, positions.size() - 1));
+                                     mesh_name, positions.size() - 1));
       if (!normal.empty()) {
         const Eigen::Matrix3d linear = to_world.topLeftCorner<3, 3>().inverse().transpose();
         const Vector3d given(normal[3 * v], normal[3 * v + 1], normal[3 * v + 2]);
@@ -425,12 +443,10 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       }
       if (!uv.empty()) document.texcoords.push_back({uv[2 * v], 1.0 - uv[2 * v + 1], 0.0});
     }
-    if (!normal.empty() != (normals.size() == positions.size()) ||
-        !uv.empty() != (document.texcoords.size() == positions.size()))
-      throw InputError(path, 0,
-                       fmt::format("mesh '{}': primitive {} differs from the others in having "
-                                   "NORMAL or TEXCOORD_0; give every primitive both or neither",
-                                   gltf.mesh_name, p));
+    // Primitives without normals or texture coordinates get zeros (their corners name
+    // none), so that both stay indexed by position across primitives and meshes.
+    if (!normals.empty()) normals.resize(positions.size(), Vector3d::Zero());
+    if (!document.texcoords.empty()) document.texcoords.resize(positions.size(), {0.0, 0.0, 0.0});
 
     std::vector<double> indices;
     if (primitive.indices >= 0) {
@@ -444,7 +460,7 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       throw InputError(path, 0,
                        fmt::format("mesh '{}' primitive {} has {} indices, not a multiple "
                                    "of 3",
-                                   gltf.mesh_name, p, indices.size()));
+                                   mesh_name, p, indices.size()));
     for (std::size_t i = 0; i < indices.size(); i += 3) {
       std::array<ObjCorner, 3> face;
       for (std::size_t c = 0; c < 3; ++c) {
@@ -453,7 +469,7 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
           throw InputError(path, 0,
                            fmt::format("mesh '{}' primitive {}: index {} out of range "
                                        "({} vertices)",
-                                       gltf.mesh_name, p, index, count));
+                                       mesh_name, p, index, count));
         const int vertex = part.first_position + static_cast<int>(index);
         face[c] = ObjCorner{vertex, uv.empty() ? -1 : vertex, normal.empty() ? -1 : vertex};
       }
@@ -469,6 +485,69 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
         "g " + (material.empty() ? fmt::format("primitive_{}", p) : material), part.first_face});
     gltf.primitives.push_back(part);
   }
+}
+
+}  // namespace
+
+std::vector<std::string> gltf_skin_mesh_names(const std::string& path) {
+  const tinygltf::Model model = load_model(path);
+  const NodeGraph graph = node_graph(model, path);
+  std::vector<std::string> names;
+  for (const int node : choose_nodes(model, graph, {}, path)) {
+    const auto& info = model.nodes[static_cast<std::size_t>(node)];
+    const std::string& name = model.meshes[static_cast<std::size_t>(info.mesh)].name;
+    names.push_back(name.empty() ? info.name : name);
+  }
+  return names;
+}
+
+GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
+  return read_gltf_meshes(
+      path, mesh_name.empty() ? std::vector<std::string>{} : std::vector<std::string>{mesh_name},
+      false);
+}
+
+GltfAsset read_gltf_meshes(const std::string& path, const std::vector<std::string>& mesh_names,
+                           bool whole_skin) {
+  auto shared = std::make_shared<GltfModel>();
+  shared->model = load_model(path);
+  const tinygltf::Model& model = shared->model;
+  const NodeGraph graph = node_graph(model, path);
+  const std::vector<int> nodes = whole_skin || !mesh_names.empty()
+                                     ? choose_nodes(model, graph, mesh_names, path)
+                                     : std::vector<int>{choose_node(model, graph, "", path)};
+
+  GltfAsset asset;
+  ObjDocument& document = asset.document;
+  GltfDocument& gltf = asset.gltf;
+  document.source_path = path;
+  gltf.model = shared;
+  gltf.mesh = model.nodes[static_cast<std::size_t>(nodes.front())].mesh;
+  // Skinned meshes must share one skin; unskinned ones join with no weights.
+  std::vector<std::string> names;
+  int skin = -1;
+  std::string skinned_name;
+  for (const int node : nodes) {
+    const auto& info = model.nodes[static_cast<std::size_t>(node)];
+    const std::string& name = model.meshes[static_cast<std::size_t>(info.mesh)].name;
+    names.push_back(name.empty() ? info.name : name);
+    if (info.skin < 0) continue;
+    if (skin >= 0 && info.skin != skin)
+      throw InputError(path, 0,
+                       fmt::format("meshes '{}' and '{}' have different skins; give meshes of "
+                                   "one skin",
+                                   skinned_name, names.back()));
+    skin = info.skin;
+    if (skinned_name.empty()) skinned_name = names.back();
+  }
+  gltf.mesh_name = fmt::format("{}", fmt::join(names, "+"));
+  if (skin >= 0) gltf.skin = read_skin(model, skin, graph, path);
+
+  std::vector<Vector3d> positions;
+  std::vector<Vector3d> normals;
+  int skipped = 0;
+  for (const int node : nodes)
+    append_node_mesh(model, graph, node, path, asset, positions, normals, skipped);
   if (document.faces.empty())
     throw InputError(path, 0, fmt::format("mesh '{}' has no triangle", gltf.mesh_name));
   for (const tinygltf::Image& image : model.images)
@@ -476,9 +555,9 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
       document.warnings.push_back(
           fmt::format("{}: image '{}' could not be read; a written file refers to it by name", path,
                       image.uri));
-  if (!skipped.empty())
+  if (skipped > 0)
     document.warnings.push_back(fmt::format("{}: mesh '{}': {} point or line primitives skipped",
-                                            path, gltf.mesh_name, skipped.size()));
+                                            path, gltf.mesh_name, skipped));
   document.positions.resize(static_cast<Eigen::Index>(positions.size()), 3);
   for (std::size_t i = 0; i < positions.size(); ++i)
     document.positions.row(static_cast<Eigen::Index>(i)) = positions[i].transpose();

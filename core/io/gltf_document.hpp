@@ -31,6 +31,7 @@ struct SkinBinding {
 
 /// Where one merged glTF primitive sits in the document.
 struct GltfPrimitive {
+  int mesh = 0;            ///< the source mesh
   int source = 0;          ///< primitive index in the source mesh
   int first_position = 0;  ///< its first vertex among the document's positions
   int position_count = 0;
@@ -38,12 +39,12 @@ struct GltfPrimitive {
   int face_count = 0;
 };
 
-/// A glTF mesh as read: its TRIANGLES primitives merged into `GltfAsset::document`
+/// One or more glTF meshes as read: their TRIANGLES primitives merged into `GltfAsset::document`
 /// (position, texcoord and normal index of a corner are the vertex's merged index).
 struct GltfDocument {
   std::shared_ptr<const GltfModel> model;
-  int mesh = -1;
-  std::string mesh_name;
+  int mesh = -1;          ///< the first mesh read
+  std::string mesh_name;  ///< the names of the meshes read, joined by '+'
   std::vector<GltfPrimitive> primitives;
   bool has_tangents = false;        ///< some primitive had a TANGENT attribute
   std::optional<SkinBinding> skin;  ///< the skin of the node that places the mesh
@@ -72,10 +73,21 @@ bool is_gltf_path(const std::string& path);
 ///        names), or a mesh with no triangle.
 GltfAsset read_gltf(const std::string& path, const std::string& mesh_name = "");
 
+/// Reads several meshes of one glTF file as read_gltf reads one, merged into one document
+/// in the order named. With no name: every mesh that the first skinned mesh's skin drives,
+/// in scene order, when `whole_skin` (a whole avatar: body, head, eyes), else as read_gltf.
+/// @throw InputError as read_gltf, and for a mesh named twice or meshes of different skins.
+GltfAsset read_gltf_meshes(const std::string& path, const std::vector<std::string>& mesh_names,
+                           bool whole_skin = true);
+
 /// The names of the meshes (or, for an unnamed mesh, of its node) that the scene's nodes
 /// place, in scene order: the names read_gltf takes.
 /// @throw InputError as read_gltf for a file that cannot be parsed.
 std::vector<std::string> gltf_mesh_names(const std::string& path);
+
+/// The names of the meshes read_gltf_meshes reads with no name and `whole_skin`.
+/// @throw InputError as read_gltf for a file that cannot be parsed.
+std::vector<std::string> gltf_skin_mesh_names(const std::string& path);
 
 /// Reads a surface of either format: `read_gltf(path, mesh_name).document` for `.glb` and
 /// `.gltf`, else `read_obj(path)`.

@@ -176,10 +176,10 @@ std::vector<float> vertex_tangents(const OutPrimitive& p, const MatrixX3d& posit
 std::vector<OutPrimitive> primitives_from_gltf(const ObjDocument& document,
                                                const GltfDocument& source) {
   const tinygltf::Model& model = source.model->model;
-  const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(source.mesh)];
   std::vector<OutPrimitive> out;
   for (const GltfPrimitive& part : source.primitives) {
     OutPrimitive& p = out.emplace_back();
+    const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(part.mesh)];
     p.source = &mesh.primitives[static_cast<std::size_t>(part.source)];
     p.material = p.source->material;
     for (int v = 0; v < part.position_count; ++v) {

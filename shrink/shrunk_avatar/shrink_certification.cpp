@@ -1,7 +1,6 @@
 #include "shrink/shrunk_avatar/shrink_certification.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -74,30 +73,34 @@ std::optional<ShrinkConflict> find_shrink_conflict(const TriangleMesh& shrunk_av
   }
 
   // A garment vertex inside means (surfaces being apart) its whole part is inside.
+  const std::vector<int> inside = garment_vertices_inside(shrunk_avatar, garment.vertices);
+  if (inside.empty()) return std::nullopt;
+  ShrinkConflict conflict;
+  conflict.kind = ShrinkConflict::Kind::kGarmentInside;
+  conflict.garment_vertex = inside.front();
+  conflict.position = garment.vertices.row(conflict.garment_vertex).transpose();
+  conflict.count = inside.size();
+  return conflict;
+}
+
+std::vector<int> garment_vertices_inside(const TriangleMesh& shrunk_avatar,
+                                         const Eigen::Ref<const MatrixX3d>& points) {
   // The fast winding number decides only clear cases; near 1/2 the exact sum does, so
   // the Barnes-Hut approximation never decides a certificate.
   const TriangleTree avatar_tree(shrunk_avatar);
-  const auto vertex_count = static_cast<int>(garment.vertices.rows());
-  std::atomic<int> first_inside{std::numeric_limits<int>::max()};
-  std::atomic<std::size_t> inside_count{0};
-  tbb::parallel_for(0, vertex_count, [&](int v) {
-    const Vector3d p = garment.vertices.row(v).transpose();
+  const auto count = static_cast<int>(points.rows());
+  std::vector<char> inside(static_cast<std::size_t>(count), 0);
+  tbb::parallel_for(0, count, [&](int v) {
+    const Vector3d p = points.row(v).transpose();
     double winding = avatar_tree.winding_number(p);
     if (std::abs(std::abs(winding) - 0.5) < kUncertainWinding)
       winding = avatar_tree.exact_winding_number(p);
-    if (!winding_number_inside(winding)) return;
-    ++inside_count;
-    int current = first_inside.load();
-    while (v < current && !first_inside.compare_exchange_weak(current, v)) {
-    }
+    inside[static_cast<std::size_t>(v)] = winding_number_inside(winding) ? 1 : 0;
   });
-  if (inside_count == 0) return std::nullopt;
-  ShrinkConflict conflict;
-  conflict.kind = ShrinkConflict::Kind::kGarmentInside;
-  conflict.garment_vertex = first_inside.load();
-  conflict.position = garment.vertices.row(conflict.garment_vertex).transpose();
-  conflict.count = inside_count.load();
-  return conflict;
+  std::vector<int> listed;
+  for (int v = 0; v < count; ++v)
+    if (inside[static_cast<std::size_t>(v)]) listed.push_back(v);
+  return listed;
 }
 
 }  // namespace gr

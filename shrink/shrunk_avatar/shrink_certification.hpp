@@ -1,6 +1,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "core/common/types.hpp"
 #include "shrink/shrunk_avatar/shrink_result.hpp"
@@ -16,5 +17,9 @@ namespace gr {
 /// @return nothing when the shrunk avatar is free of the garment, else the first conflict.
 std::optional<ShrinkConflict> find_shrink_conflict(const TriangleMesh& shrunk_avatar,
                                                    const TriangleMesh& garment);
+
+/// The points (rows) inside the shrunk avatar, by the winding number test above, in order.
+std::vector<int> garment_vertices_inside(const TriangleMesh& shrunk_avatar,
+                                         const Eigen::Ref<const MatrixX3d>& points);
 
 }  // namespace gr

@@ -6,9 +6,14 @@ namespace gr {
 
 void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options) {
   command.add_option("--source-body", inputs.source_body,
-                     "The body the garment was made on (OBJ, in the garment's frame): it gives "
-                     "the garment's ease, which the fit keeps (see --fit), and the no-fit list "
-                     "is inferred from it when --no-fit is not given");
+                     "The body the garment was made on (OBJ or glTF, in the garment's frame; "
+                     "it may be cut away under the clothes): it gives the garment's ease, "
+                     "which the fit keeps (see --fit), and the no-fit list is inferred from it "
+                     "when --no-fit is not given");
+  command.add_option("--source-body-mesh", inputs.source_body_meshes,
+                     "glTF source body: a mesh or node to read; repeat for several, merged "
+                     "(default: every mesh its skin drives, but the garment's when the garment "
+                     "is in the same file)");
   command
       .add_option_function<std::string>(
           "--binding",

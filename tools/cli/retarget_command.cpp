@@ -68,6 +68,16 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
                   "garment onto the avatar (the paper's fit). Default: ease with --source-body, "
                   "else tight")
       ->check(CLI::IsMember({"ease", "tight"}));
+  cmd->add_option_function<std::string>(
+         "--pierced",
+         [options](const std::string& choice) { options->open_pierced_faces = choice == "open"; },
+         "Garment faces the body passes through as given, so that no shrunk avatar is free of "
+         "them (a cap or closed shell a bone pierces): open (leave them out of the avatar "
+         "contact, and out of the written file where the body still passes through them; "
+         "report.json pierced_faces) or refuse (end with no valid shrink, naming faces and "
+         "bones)")
+      ->check(CLI::IsMember({"open", "refuse"}))
+      ->default_str("open");
   auto& o = options->overrides;
   const char* units = " (normalized scene units: the avatar is about 2 tall)";
   cmd->add_option("--dhat", o.dhat, std::string("Barrier support distance") + units)

@@ -10,9 +10,10 @@ void add_scene_options(CLI::App& command, ScenePaths& inputs, std::string& out_d
   command.add_option("--garment-mesh", inputs.garment_mesh,
                      "glTF garment: the mesh or node to read (default: the first skinned mesh, "
                      "else the first mesh)");
-  command.add_option("--avatar-mesh", inputs.avatar_mesh,
-                     "glTF avatar: the mesh or node to read (default: the first skinned mesh, "
-                     "else the first mesh)");
+  command.add_option("--avatar-mesh", inputs.avatar_meshes,
+                     "glTF avatar: a mesh or node to read; repeat for an avatar of several "
+                     "meshes, merged (default: every mesh the first skinned mesh's skin drives, "
+                     "such as body, head and eyes; else the first mesh)");
   command.add_option("--joint-map", inputs.joint_map,
                      "Skinned glTF garment and avatar without skeleton files: lines `source_joint "
                      "target_joint` for joints whose names differ ('-' leaves one out)");

@@ -31,7 +31,7 @@ struct ValidateCommandOptions {
   std::string marks;
   std::string html;
   std::optional<double> threshold;
-  std::string avatar_mesh;
+  std::vector<std::string> avatar_meshes;
   std::size_t max_listed = kDefaultListedIssues;
   std::vector<std::string> sources;  ///< per garment, its source garment (empty: no shape check)
   ShapeThresholds shape_thresholds;
@@ -48,12 +48,17 @@ void expand_garment_meshes(ValidateCommandOptions& options) {
   if (meshes.empty()) return;
   if (options.garments.size() == 1 && meshes.size() == 1 && meshes.front() == "all") {
     meshes.clear();
-    const std::string avatar_mesh =
-        options.avatar == options.garments.front()
-            ? read_gltf(options.avatar, options.avatar_mesh).gltf.mesh_name
-            : std::string();
+    std::vector<std::string> avatar_meshes;
+    if (options.avatar == options.garments.front()) {
+      if (options.avatar_meshes.empty())
+        throw InputError(options.avatar, 0,
+                         "--garment-mesh all with the avatar in the same file needs "
+                         "--avatar-mesh: name the body's meshes");
+      avatar_meshes = options.avatar_meshes;
+    }
     for (const std::string& name : gltf_mesh_names(options.garments.front()))
-      if (name != avatar_mesh) meshes.push_back(name);
+      if (std::find(avatar_meshes.begin(), avatar_meshes.end(), name) == avatar_meshes.end())
+        meshes.push_back(name);
   }
   if (options.garments.size() == 1 && meshes.size() > 1)
     options.garments.assign(meshes.size(), options.garments.front());
@@ -97,9 +102,10 @@ void add_validate_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--avatar", options->avatar,
                   "Avatar OBJ or glTF (.glb/.gltf), in the garments' frame")
       ->required();
-  cmd->add_option("--avatar-mesh", options->avatar_mesh,
-                  "glTF avatar: the mesh or node to check against (default: the first skinned "
-                  "mesh, else the first mesh)");
+  cmd->add_option("--avatar-mesh", options->avatar_meshes,
+                  "glTF avatar: a mesh or node to check against; repeat for several, merged "
+                  "(default: every mesh the first skinned mesh's skin drives, else the first "
+                  "mesh)");
   cmd->add_option("--report", options->report, "Write the JSON validation report here");
   cmd->add_option("--marks", options->marks, "Write an OBJ of the offending faces here");
   cmd->add_option("--html", options->html,
@@ -136,7 +142,7 @@ void add_validate_command(CLI::App& root, int& exit_code) {
     expand_garment_meshes(*options);
     ValidationOptions validation_options;
     validation_options.threshold = options->threshold;
-    validation_options.avatar_mesh = options->avatar_mesh;
+    validation_options.avatar_meshes = options->avatar_meshes;
     validation_options.garment_meshes = options->garment_meshes;
     // Where a source crosses itself, its garment inherits those pairs: counted apart.
     for (const std::string& source : options->sources) {

@@ -1,6 +1,7 @@
 #include "tools/pipeline/inferred_inputs.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <optional>
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include "core/common/errors.hpp"
 #include "core/energies/fit_energy.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/gltf_document.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/mesh/simulation_mesh.hpp"
 #include "tools/pipeline/normalization.hpp"
@@ -113,8 +115,28 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
   return weights;
 }
 
-TriangleMesh read_source_body(const std::string& path, const NormalizedScene& normalized) {
-  const SimulationMesh read = make_simulation_mesh(read_obj(path));
+TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
+                              const NormalizedScene& normalized) {
+  const std::string& path = paths.source_body;
+  ObjDocument document;
+  if (is_gltf_path(path)) {
+    std::vector<std::string> meshes = paths.source_body_meshes;
+    std::error_code error;
+    if (meshes.empty() && scene.garment_gltf &&
+        std::filesystem::equivalent(path, paths.garment, error)) {
+      meshes = gltf_skin_mesh_names(path);
+      const std::string& garment = scene.garment_gltf->mesh_name;
+      meshes.erase(std::remove(meshes.begin(), meshes.end(), garment), meshes.end());
+      if (meshes.empty())
+        throw InputError(path, 0, "has no mesh but the garment to be the source body");
+    }
+    document = read_gltf_meshes(path, meshes).document;
+  } else {
+    if (!paths.source_body_meshes.empty())
+      throw InputError(path, 0, "--source-body-mesh is for glTF files only");
+    document = read_obj(path);
+  }
+  const SimulationMesh read = make_simulation_mesh(document);
   if (read.mesh.faces.rows() == 0)
     throw InputError(path, 0, "source body has no (non-degenerate) triangle");
   return {normalized.normalization.garment_to_scene.apply_rows(read.mesh.vertices),

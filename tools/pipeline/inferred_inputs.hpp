@@ -11,6 +11,7 @@
 namespace gr {
 
 struct Scene;
+struct ScenePaths;
 struct NormalizedScene;
 
 /// How avatar vertices find their bones when skeletons come without skin weights.
@@ -58,10 +59,14 @@ nlohmann::json to_json(const InferenceReport& report);
 Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScene& normalized,
                                         const InferenceOptions& options, InferenceReport& report);
 
-/// The body the garment was made on (an OBJ in the garment's frame, welded), placed in the
-/// normalized scene by the garment's normalization.
+/// The body the garment was made on (`paths.source_body`, OBJ or glTF in the garment's
+/// frame, welded), placed in the normalized scene by the garment's normalization. A glTF
+/// body is `paths.source_body_meshes` merged, by default every mesh its skin drives except
+/// the garment's own mesh when the garment comes from the same file; a body cut away under
+/// the clothes is valid.
 /// @throw InputError when it cannot be read or has no (non-degenerate) triangle.
-TriangleMesh read_source_body(const std::string& path, const NormalizedScene& normalized);
+TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
+                              const NormalizedScene& normalized);
 
 /// The no-fit list a run uses, as welded garment vertex ids: the scene's when one was given
 /// (its file named in ScenePaths::no_fit), else inferred (from `source_body` when not null,

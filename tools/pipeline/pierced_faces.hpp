@@ -4,6 +4,9 @@
 #include <vector>
 
 #include "core/common/types.hpp"
+#include "core/energies/distance_field.hpp"
+#include "core/io/gltf_document.hpp"
+#include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 
@@ -21,5 +24,38 @@ std::vector<FacePair> faces_pierced_by_bones(const TriangleMesh& garment, const 
 std::string describe_pierced_faces(const std::vector<FacePair>& pierced,
                                    const std::vector<int>& face_to_obj, const Skeleton& skeleton,
                                    const std::vector<std::string>& joint_names);
+
+/// The faces whose three corners lie within `rings` edges of a corner of `seeds` (rows of
+/// `faces`), seeds included; sorted.
+std::vector<int> faces_around(const TriangleMesh& mesh, const std::vector<int>& seeds, int rings);
+
+/// The garment faces a shrunk avatar crosses (exactly), and those holding a garment vertex
+/// inside it (the shrink's winding-number test): what keeps that shrink from being free of
+/// the garment. Sorted.
+std::vector<int> faces_against_shrunk_avatar(const TriangleMesh& shrunk_avatar,
+                                             const TriangleMesh& garment);
+
+/// The garment without `left_out` (sorted face rows), renumbered to the vertices the kept
+/// faces use: the surface a shrunk avatar must be free of when those faces are left out of
+/// the avatar contact.
+TriangleMesh surface_without(const TriangleMesh& garment, const std::vector<int>& left_out);
+
+/// Of the faces left out of the avatar contact, those the avatar still passes through or
+/// holds at the end: crossing an avatar face (exactly), or with a corner closer than
+/// `clearance` to the avatar or inside it (`distance`). They are opened: left out of the
+/// written garment, so that what is written is free of the avatar. Sorted.
+std::vector<int> faces_to_open(const TriangleMesh& garment, const TriangleMesh& avatar,
+                               const DistanceField& distance, const std::vector<int>& left_out,
+                               double clearance);
+
+/// Leaves `faces` (sorted document face ids) out of a document to be written: its groups
+/// and materials, and a glTF source's primitives (when given), keep the faces that stay.
+/// Positions stay as they are.
+void remove_document_faces(ObjDocument& document, GltfDocument* gltf,
+                           const std::vector<int>& faces);
+
+/// Face ids of a document before remove_document_faces(`removed`) as ids after it: -1 for a
+/// removed face.
+std::vector<int> face_ids_after_removal(int face_count, const std::vector<int>& removed);
 
 }  // namespace gr

@@ -155,6 +155,16 @@ nlohmann::json to_json(const RetargetReport& r) {
        "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
        "they are, their neighbourhood left out of self contact; the certificate counts them "
        "apart and fails only on new ones"}};
+  report["pierced_faces"] = {
+      {"shrinks", r.pierced.shrinks},
+      {"bones", r.pierced.bones},
+      {"left_out_of_contact", r.pierced.document_faces},
+      {"opened", r.pierced.opened_document_faces},
+      {"meaning",
+       "garment faces (0-based input faces) the avatar passes through as given, such as a cap "
+       "around a bone: left out of the garment-avatar contact so that the avatar can shrink "
+       "free of the rest; those the avatar still passes through at the end are opened, "
+       "left out of the written file"}};
   report["split_non_manifold_edges"] = {
       {"edges", r.split_edges},
       {"vertex_copies", r.split_copies},

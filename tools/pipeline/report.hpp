@@ -55,6 +55,14 @@ struct InheritedReport {
   std::vector<FacePair> document_pairs;  ///< the pairs as input face ids (0-based)
 };
 
+/// Garment faces the avatar passes through as given (RetargetOptions::open_pierced_faces).
+struct PiercedReport {
+  int shrinks = 0;                  ///< shrinks tried until one was free of the rest of the garment
+  std::vector<int> document_faces;  ///< left out of the avatar contact, input face ids
+  std::vector<std::string> bones;   ///< source bones through garment faces, "a-b"
+  std::vector<int> opened_document_faces;  ///< left out of the written file, input face ids
+};
+
 /// What a retarget run did and measured; written as report.json.
 struct RetargetReport {
   Quality quality = Quality::kBalanced;
@@ -114,6 +122,7 @@ struct RetargetReport {
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
   InheritedReport inherited;
+  PiercedReport pierced;
   int split_edges = 0;   ///< garment edges of more than two faces, split for the solver
   int split_copies = 0;  ///< vertex copies the split made (welded back in the written file)
   /// After no valid shrink: the closest shrunk avatar written and the faces still crossing

@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <limits>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -77,12 +78,31 @@ struct Inputs {
   Eigen::MatrixXd bound_skin_weights;
   /// Where the garment crosses itself as given (normalized garment's faces).
   InheritedCrossings inherited;
+  /// Garment faces left out of the avatar contact (the avatar passes through them as
+  /// given), sorted rows of the normalized garment's faces.
+  std::vector<int> pierced_faces;
 };
+
+/// The scene a shrunk avatar must be free of: the garment without its pierced faces.
+NormalizedScene shrink_scene(const Inputs& in) {
+  NormalizedScene scene = in.normalized;
+  if (!in.pierced_faces.empty()) scene.garment = surface_without(scene.garment, in.pierced_faces);
+  return scene;
+}
 
 /// Neighbourhood of an inherited crossing whose self pairs are not modelled, in edge rings
 /// around each crossing face: one ring leaves pairs a fraction of an edge from the
 /// crossing line inside the barrier at the start.
 constexpr int kTangleRings = 2;
+
+/// Pierced faces (RetargetOptions::open_pierced_faces) grow by this many edge rings: the
+/// shrunk avatar around a bone is a little thicker than the bone.
+constexpr int kPiercedRings = 2;
+/// Shrinks tried, each leaving out the faces the closest one met, before giving up; and the
+/// largest share of the garment's faces left out (more means the garment is not around
+/// the body the skeleton gives).
+constexpr int kPiercedShrinks = 4;
+constexpr double kMaxPiercedFraction = 0.25;
 
 void write_report(const std::string& path, const RetargetReport& report) {
   const nlohmann::json json = to_json(report);
@@ -295,6 +315,20 @@ SolverScene solver_scene_stage(Run& run, const Inputs& in, const ShrinkResult& s
   scene.no_fit = in.scene.no_fit;
   scene.distance_field = &distance_field;
   scene.garment_tangles = in.inherited.tangles;
+  scene.faces_without_avatar_contact = in.pierced_faces;
+  // Vertices only pierced faces hold are not fitted: nothing keeps them off the body.
+  if (!in.pierced_faces.empty()) {
+    std::vector<char> kept(static_cast<std::size_t>(normalized.garment.vertices.rows()), 0);
+    for (Eigen::Index f = 0; f < normalized.garment.faces.rows(); ++f)
+      if (!std::binary_search(in.pierced_faces.begin(), in.pierced_faces.end(),
+                              static_cast<int>(f)))
+        for (int k = 0; k < 3; ++k)
+          kept[static_cast<std::size_t>(normalized.garment.faces(f, k))] = 1;
+    for (std::size_t v = 0; v < kept.size(); ++v)
+      if (!kept[v]) scene.no_fit.push_back(static_cast<int>(v));
+    std::sort(scene.no_fit.begin(), scene.no_fit.end());
+    scene.no_fit.erase(std::unique(scene.no_fit.begin(), scene.no_fit.end()), scene.no_fit.end());
+  }
   scene.ties = in.scene.garment_ties;
   scene.attachments = in.inherited.attachments;
   solver.fit_faces = fit_face_mask(
@@ -360,6 +394,78 @@ std::string pierced_cause(const Inputs& in, ShrinkMode mode) {
                                        *in.normalized.source_skeleton, in.scene.joint_names);
 }
 
+/// Shrink: the avatar shrunk free of the garment. With RetargetOptions::open_pierced_faces,
+/// faces the avatar passes through as given leave the avatar contact: first those the
+/// source bones pierce, then, while no shrunk avatar is free of the rest, those the closest
+/// one meets, each with kPiercedRings rings; up to kPiercedShrinks shrinks and
+/// kMaxPiercedFraction of the faces.
+/// @throw NoValidShrinkError from the last shrink tried.
+ShrinkResult shrink_stage(Run& run, Inputs& in, const Eigen::MatrixXd& skin_weights,
+                          const SignedDistanceGrid& grid) {
+  RetargetReport& report = run.report();
+  const TriangleMesh& garment = in.normalized.garment;
+  const auto shrink = [&]() {
+    return with_stop_hook(run.control, [&](const ProgressCallback& hook) {
+      return shrink_avatar(report.shrink_mode, shrink_scene(in), skin_weights, &grid, hook,
+                           run.parameters().skeleton_pullback);
+    });
+  };
+  if (!run.options.open_pierced_faces) return shrink();
+  const auto max_faces =
+      static_cast<std::size_t>(kMaxPiercedFraction * static_cast<double>(garment.faces.rows()));
+  const auto leave_out = [&](const std::vector<int>& seeds) {
+    std::vector<int> grown = faces_around(garment, seeds, kPiercedRings);
+    std::vector<int> merged;
+    std::set_union(in.pierced_faces.begin(), in.pierced_faces.end(), grown.begin(), grown.end(),
+                   std::back_inserter(merged));
+    if (merged.size() > max_faces) return false;
+    in.pierced_faces = std::move(merged);
+    return true;
+  };
+  if (in.normalized.source_skeleton) {
+    const Skeleton& skeleton = *in.normalized.source_skeleton;
+    const std::vector<FacePair> by_bones = faces_pierced_by_bones(garment, skeleton);
+    std::vector<int> seeds;
+    std::set<std::string> bones;
+    for (const FacePair& p : by_bones) {
+      seeds.push_back(p.first);
+      const auto joint = [&](int j) {
+        return j < static_cast<int>(in.scene.joint_names.size())
+                   ? in.scene.joint_names[static_cast<std::size_t>(j)]
+                   : fmt::format("joint {}", j);
+      };
+      bones.insert(joint(skeleton.bones(p.second, 0)) + "-" + joint(skeleton.bones(p.second, 1)));
+    }
+    report.pierced.bones.assign(bones.begin(), bones.end());
+    if (!seeds.empty() && leave_out(seeds))
+      run.progress.log("shrink",
+                       "{} garment faces pierced by {} source bones: {} left out of "
+                       "the avatar contact",
+                       by_bones.size(), bones.size(), in.pierced_faces.size());
+  }
+  for (int attempt = 1;; ++attempt) {
+    report.pierced.shrinks = attempt;
+    try {
+      ShrinkResult shrunk = shrink();
+      for (const int f : in.pierced_faces)
+        report.pierced.document_faces.push_back(
+            in.scene.garment.face_to_obj[static_cast<std::size_t>(f)]);
+      return shrunk;
+    } catch (const NoValidShrinkError& e) {
+      if (attempt == kPiercedShrinks || e.closest().rows() != in.normalized.avatar.vertices.rows())
+        throw;
+      const std::vector<int> met = faces_against_shrunk_avatar(
+          TriangleMesh{e.closest(), in.normalized.avatar.faces}, garment);
+      const std::size_t before = in.pierced_faces.size();
+      if (!leave_out(met) || in.pierced_faces.size() == before) throw;
+      run.progress.log("shrink",
+                       "no shrink free of the garment: the closest meets {} faces; {} "
+                       "left out of the avatar contact, shrinking again",
+                       met.size(), in.pierced_faces.size() - before);
+    }
+  }
+}
+
 /// When the inflation fails from a skeleton-shrunk avatar, it runs again from one shrunk
 /// with this fraction of its pullback (SkeletonShrinkOptions::pullback: 0.25, then 0.05).
 constexpr double kStalledPullbackFactor = 0.2;
@@ -421,7 +527,8 @@ std::string inflate_from_thinner_shrink(Run& run, const Inputs& in,
   ShrinkResult thinner;
   try {
     thinner = with_stop_hook(run.control, [&](const ProgressCallback& hook) {
-      return shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, hook, pullback);
+      return shrink_avatar(report.shrink_mode, shrink_scene(in), skin_weights, &grid, hook,
+                           pullback);
     });
   } catch (const NoValidShrinkError& e) {
     return e.what();
@@ -548,6 +655,34 @@ void write_garment_glb(Run& run, const Inputs& in, const Eigen::Ref<const Matrix
   write_glb(run.staged("garment.glb"), in.scene.garment_document, source, positions, &skin);
 }
 
+/// Open: the pierced faces the avatar still passes through or holds at the end leave the
+/// garment to be written, so that what is written is free of the avatar.
+void open_pierced_stage(Run& run, Inputs& in, const MatrixX3d& garment,
+                        const DistanceField& distance_field) {
+  if (in.pierced_faces.empty()) return;
+  const std::vector<int> opened =
+      faces_to_open(TriangleMesh{garment, in.normalized.garment.faces}, in.normalized.avatar,
+                    distance_field, in.pierced_faces, run.parameters().solver.dhat);
+  std::vector<int> document_faces;
+  for (const int f : opened)
+    document_faces.push_back(in.scene.garment.face_to_obj[static_cast<std::size_t>(f)]);
+  std::sort(document_faces.begin(), document_faces.end());
+  document_faces.erase(std::unique(document_faces.begin(), document_faces.end()),
+                       document_faces.end());
+  remove_document_faces(in.scene.garment_document,
+                        in.scene.garment_gltf ? &*in.scene.garment_gltf : nullptr, document_faces);
+  run.report().pierced.opened_document_faces = document_faces;
+  run.progress.log("open",
+                   "{} of the {} faces left out of the avatar contact still meet the "
+                   "avatar: left out of the written garment",
+                   document_faces.size(), in.pierced_faces.size());
+  if (!document_faces.empty())
+    run.warn(
+        fmt::format("{} garment faces the body passes through (a cap or closed shell) are "
+                    "opened: left out of the written file (report.json pierced_faces)",
+                    document_faces.size()));
+}
+
 /// Write: the garment with its materials, in the avatar's frame and units.
 void write_stage(Run& run, const Inputs& in, const MatrixX3d& garment) {
   const StageTimer timer;
@@ -584,8 +719,20 @@ Certificate certify_stage(Run& run) {
       {"shape", shape_report(run.report().shape, run.report().shape_thresholds)},
       {"quality", to_string(options.quality)}};
   ValidationOptions validation;
-  validation.avatar_mesh = options.inputs.avatar_mesh;
-  validation.inherited_self_pairs = {run.report().inherited.document_pairs};
+  validation.avatar_meshes = options.inputs.avatar_meshes;
+  // Inherited pairs as faces of the written file, which lacks the opened faces.
+  const std::vector<int>& opened = run.report().pierced.opened_document_faces;
+  std::vector<FacePair> inherited;
+  int face_count = 0;
+  for (const FacePair& p : run.report().inherited.document_pairs)
+    face_count = std::max({face_count, p.first + 1, p.second + 1});
+  const std::vector<int> written_id = face_ids_after_removal(face_count, opened);
+  for (const FacePair& p : run.report().inherited.document_pairs) {
+    const int a = written_id[static_cast<std::size_t>(p.first)];
+    const int b = written_id[static_cast<std::size_t>(p.second)];
+    if (a >= 0 && b >= 0) inherited.push_back({a, b});
+  }
+  validation.inherited_self_pairs = {inherited};
   const Certificate certificate = certify_garment(garment_file, options.inputs.avatar, extra,
                                                   validation, run.result.garment_path);
   write_certificate(run.staged("certificate.json"), certificate);
@@ -711,7 +858,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   // The source body gives the no-fit inference and the ease: read once.
   std::optional<TriangleMesh> source_body;
   if (!options.inputs.source_body.empty())
-    source_body = read_source_body(options.inputs.source_body, in.normalized);
+    source_body = read_source_body(options.inputs, in.scene, in.normalized);
   in.scene.no_fit = no_fit_for_run(in.scene, in.normalized, !options.inputs.no_fit.empty(),
                                    source_body ? &*source_body : nullptr, options.skirt,
                                    run.out.string(), options.inference, report.inferred);
@@ -745,10 +892,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     if (report.inferred.skin_weights_inferred)
       run.progress.log("shrink", "skin weights inferred: {} binding in {:.2f} s",
                        report.inferred.binding_method, report.inferred.binding.seconds);
-    shrunk = with_stop_hook(control, [&](const ProgressCallback& hook) {
-      return shrink_avatar(report.shrink_mode, in.normalized, skin_weights, &grid, hook,
-                           run.parameters().skeleton_pullback);
-    });
+    shrunk = shrink_stage(run, in, skin_weights, grid);
   } catch (const NoValidShrinkError& e) {
     const Vector3d where =
         in.normalized.normalization.garment_to_scene.invert(e.conflict().position);
@@ -796,6 +940,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(fit.solve.gradient_norm))
     return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
 
+  open_pierced_stage(run, in, fit.garment, distance_field);
   write_stage(run, in, fit.garment);
   shape_stage(run, in, fit.garment);
   if (report.ease.source_known)

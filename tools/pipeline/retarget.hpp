@@ -46,6 +46,11 @@ struct RetargetOptions {
   /// Write into out_dir directly instead of swapping a complete result folder into place
   /// (ResultFolder): for callers that give each run a private folder of their own.
   bool write_in_place = false;
+  /// Garment faces the avatar passes through as given (a cap a bone pierces, a hand laid
+  /// through a skirt), so that no shrunk avatar is free of them: open (left out of the
+  /// avatar contact, and out of the written garment where the avatar still passes through
+  /// them at the end) or refuse (no valid shrink, naming the faces and bones).
+  bool open_pierced_faces = true;
 };
 
 /// How a retarget run ended; the command line maps it to an exit code.

@@ -15,15 +15,18 @@ namespace gr {
 
 namespace {
 
-SimulationMesh load_surface(const std::string& path, const std::string& mesh_name, const char* role,
-                            ObjDocument& document, std::optional<GltfDocument>& gltf,
-                            std::vector<std::string>& warnings) {
+/// Reads a garment (one glTF mesh) or an avatar (glTF meshes merged, by default all those
+/// its skin drives).
+SimulationMesh load_surface(const std::string& path, const std::vector<std::string>& mesh_names,
+                            const char* role, ObjDocument& document,
+                            std::optional<GltfDocument>& gltf, std::vector<std::string>& warnings) {
+  const bool avatar = std::string(role) == "avatar";
   if (is_gltf_path(path)) {
-    GltfAsset asset = read_gltf(path, mesh_name);
+    GltfAsset asset = read_gltf_meshes(path, mesh_names, avatar);
     document = std::move(asset.document);
     gltf = std::move(asset.gltf);
   } else {
-    if (!mesh_name.empty())
+    if (!mesh_names.empty())
       throw InputError(path, 0, fmt::format("--{}-mesh is for glTF files only", role));
     document = read_obj(path);
   }
@@ -152,7 +155,10 @@ Scene load_scene(const ScenePaths& paths) {
   if (paths.garment.empty()) throw InputError("", 0, "no garment file given");
   if (paths.avatar.empty()) throw InputError("", 0, "no avatar file given");
   Scene scene;
-  scene.garment = load_surface(paths.garment, paths.garment_mesh, "garment", scene.garment_document,
+  const std::vector<std::string> garment_mesh = paths.garment_mesh.empty()
+                                                    ? std::vector<std::string>{}
+                                                    : std::vector<std::string>{paths.garment_mesh};
+  scene.garment = load_surface(paths.garment, garment_mesh, "garment", scene.garment_document,
                                scene.garment_gltf, scene.warnings);
   scene.split_edges = split_non_manifold_edges(scene.garment, scene.garment_ties);
   if (scene.split_edges > 0)
@@ -160,7 +166,7 @@ Scene load_scene(const ScenePaths& paths) {
         "{}: {} edges shared by more than two faces were split for the solver ({} vertex copies, "
         "tied to their originals); the written file welds them back",
         paths.garment, scene.split_edges, scene.garment_ties.size()));
-  scene.avatar = load_surface(paths.avatar, paths.avatar_mesh, "avatar", scene.avatar_document,
+  scene.avatar = load_surface(paths.avatar, paths.avatar_meshes, "avatar", scene.avatar_document,
                               scene.avatar_gltf, scene.warnings);
 
   if (paths.source_skeleton.empty() != paths.target_skeleton.empty())

@@ -24,9 +24,12 @@ struct ScenePaths {
   std::string no_fit;        ///< 0-based garment OBJ vertex ids
   // Initialized so brace lists that stop at no_fit stay warning-free.
   std::string garment_mesh{};  ///< glTF garment: the mesh (or node) to read; empty: the default
-  std::string avatar_mesh{};   ///< glTF avatar: the same
-  std::string joint_map{};     ///< glTF skins: source joint name -> target joint name
-  std::string source_body{};   ///< the body the garment was made on, in the garment's frame
+  /// glTF avatar: the meshes (or nodes) to read, merged; empty: every mesh its skin drives
+  std::vector<std::string> avatar_meshes{};
+  std::string joint_map{};    ///< glTF skins: source joint name -> target joint name
+  std::string source_body{};  ///< the body the garment was made on, in the garment's frame
+  /// glTF source body: its meshes, merged; empty: every mesh its skin drives but the garment
+  std::vector<std::string> source_body_meshes{};
 };
 
 /// A scene as read and checked, in the files' own units and frames.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -154,13 +155,32 @@ std::vector<Section> retarget_sections(const ReportPageData& data) {
   // What the run repaired or kept of the input as given.
   const double inherited = number_at(r, "/inherited_crossings/pairs").value_or(0);
   const double split = number_at(r, "/split_non_manifold_edges/edges").value_or(0);
-  if (inherited > 0 || split > 0) {
+  const double attached = number_at(r, "/inherited_crossings/attached_pieces").value_or(0);
+  const auto listed = [&](const char* pointer) {
+    const nlohmann::json* list = find(r, pointer);
+    return list && list->is_array() ? list->size() : std::size_t{0};
+  };
+  const std::size_t pierced = listed("/pierced_faces/left_out_of_contact");
+  if (inherited > 0 || split > 0 || pierced > 0) {
     Section repairs{"Input as given", {}, ""};
     if (inherited > 0)
       repairs.rows.push_back(
           {"self-crossing face pairs kept (inherited)",
            fmt::format("{:.0f}, {:.0f} still crossing", inherited,
                        number_at(r, "/inherited_crossings/still_crossing").value_or(0))});
+    if (attached > 0)
+      repairs.rows.push_back(
+          {"pieces through another piece, attached to it", fmt::format("{:.0f}", attached)});
+    if (pierced > 0) {
+      std::string bones;
+      if (const nlohmann::json* names = find(r, "/pierced_faces/bones"); names && names->is_array())
+        for (const auto& name : *names)
+          if (name.is_string()) bones += (bones.empty() ? "" : ", ") + name.get<std::string>();
+      repairs.rows.push_back(
+          {"faces the body passes through (caps), left out of contact",
+           fmt::format("{}, {} opened (not written){}", pierced, listed("/pierced_faces/opened"),
+                       bones.empty() ? "" : "; bones through them: " + bones)});
+    }
     if (split > 0)
       repairs.rows.push_back(
           {"edges of more than two faces, split and welded back",

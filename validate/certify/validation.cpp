@@ -127,8 +127,9 @@ TriangleMesh mesh_as_written(const ObjDocument& document) {
   return mesh;
 }
 
-CheckedFile read_checked_file(const std::string& path, const std::string& mesh_name) {
-  ObjDocument document = read_surface_document(path, mesh_name);
+namespace {
+
+CheckedFile checked_document(const std::string& path, ObjDocument document) {
   if (document.faces.empty()) throw InputError(path, 0, "has no face to validate");
   CheckedFile file;
   file.path = path;
@@ -136,6 +137,18 @@ CheckedFile read_checked_file(const std::string& path, const std::string& mesh_n
   file.mesh = mesh_as_written(document);
   file.warnings = std::move(document.warnings);
   return file;
+}
+
+}  // namespace
+
+CheckedFile read_checked_file(const std::string& path, const std::string& mesh_name) {
+  return checked_document(path, read_surface_document(path, mesh_name));
+}
+
+CheckedFile read_checked_avatar(const std::string& path, const std::vector<std::string>& meshes) {
+  if (is_gltf_path(path)) return checked_document(path, read_gltf_meshes(path, meshes).document);
+  if (!meshes.empty()) throw InputError(path, 0, "--avatar-mesh is for glTF files only");
+  return checked_document(path, read_obj(path));
 }
 
 Validation validate_files(const std::vector<std::string>& garment_paths,
@@ -148,7 +161,7 @@ Validation validate_files(const std::vector<std::string>& garment_paths,
   for (std::size_t i = 0; i < garment_paths.size(); ++i)
     v.garments.push_back(read_checked_file(
         garment_paths[i], i < options.garment_meshes.size() ? options.garment_meshes[i] : ""));
-  v.avatar = read_checked_file(avatar_path, options.avatar_mesh);
+  v.avatar = read_checked_avatar(avatar_path, options.avatar_meshes);
   std::vector<TriangleMesh> garments;
   for (const CheckedFile& g : v.garments) garments.push_back(g.mesh);
   v.result = validate_meshes(garments, v.avatar.mesh, options);

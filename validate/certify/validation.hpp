@@ -16,8 +16,9 @@ namespace gr {
 struct ValidationOptions {
   /// Count garment vertices closer than this to the avatar (input units); none when unset.
   std::optional<double> threshold;
-  /// glTF avatar: the mesh (or node) to check against; empty: read_gltf's default.
-  std::string avatar_mesh;
+  /// glTF avatar: the meshes (or nodes) to check against, merged; empty: every mesh the
+  /// skin drives (read_gltf_meshes).
+  std::vector<std::string> avatar_meshes;
   /// Per garment, the glTF mesh (or node) to read; missing or empty: read_gltf's default.
   std::vector<std::string> garment_meshes;
   /// Per garment, the self-intersecting face pairs it inherited (its input crossed itself
@@ -103,6 +104,9 @@ struct CheckedFile {
 /// applied), no welding, no dropped face; and its SHA-256.
 /// @throw InputError when the file is missing or malformed or has no face.
 CheckedFile read_checked_file(const std::string& path, const std::string& mesh_name = "");
+
+/// read_checked_file for an avatar: a glTF avatar's meshes merged (read_gltf_meshes).
+CheckedFile read_checked_avatar(const std::string& path, const std::vector<std::string>& meshes);
 
 /// Files read and every check run on them.
 struct Validation {

@@ -177,6 +177,90 @@ TEST_CASE("candidates: self pairs share no vertex, avatar pairs never appear", "
   }
 }
 
+TEST_CASE("candidates: faces left out of avatar contact take part only in self pairs",
+          "[candidates]") {
+  // Two garment quads side by side above a flat avatar; the right quad (faces 2, 3) is left
+  // out of the avatar contact, as a pierced cap would be.
+  gr::TriangleMesh garment, avatar;
+  garment.vertices.resize(6, 3);
+  garment.vertices << 0, 0, 0.01, 1, 0, 0.01, 2, 0, 0.01, 0, 1, 0.01, 1, 1, 0.01, 2, 1, 0.01;
+  garment.faces.resize(4, 3);
+  garment.faces << 0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4;
+  avatar.vertices.resize(4, 3);
+  avatar.vertices << -1, -1, 0, 3, -1, 0, -1, 2, 0, 3, 2, 0;
+  avatar.faces.resize(2, 3);
+  avatar.faces << 0, 1, 2, 2, 1, 3;
+  gr::ContactMesh mesh = gr::ContactMesh::build(garment, avatar, true);
+  mesh.leave_out_of_avatar_contact({2, 3});
+  // Vertices 2 and 5 lie only on left-out faces; the shared edge 1-4 stays in.
+  CHECK(mesh.garment_point_meets_avatar == std::vector<char>{1, 1, 0, 1, 1, 0});
+  const gr::Candidates c = gr::find_candidates(mesh, stacked(garment, avatar), 0.05);
+  bool avatar_pair = false;
+  for (const auto& pt : c.point_triangle) {
+    if (pt.point < 6 && pt.triangle[0] >= 6) {
+      avatar_pair = true;
+      CHECK(pt.point != 2);
+      CHECK(pt.point != 5);
+    }
+    if (pt.point >= 6) {  // an avatar vertex: never against the left-out faces
+      const std::set<int> t(pt.triangle.begin(), pt.triangle.end());
+      CHECK(t != std::set<int>{1, 2, 5});
+      CHECK(t != std::set<int>{1, 5, 4});
+    }
+  }
+  CHECK(avatar_pair);
+  for (const auto& ee : c.edge_edge)
+    if (ee.edge_b[0] >= 6) {
+      const std::set<int> e(ee.edge_a.begin(), ee.edge_a.end());
+      CHECK(e != std::set<int>{2, 5});
+      CHECK(e != std::set<int>{1, 2});
+    }
+  CHECK_THROWS_AS(mesh.leave_out_of_avatar_contact({4}), gr::InputError);
+}
+
+TEST_CASE("candidates: tangled self pairs that touch at the start are the only ones left out",
+          "[candidates]") {
+  // A quad crossing a flap (faces 0-1 and 2), all in one tangle: the flap's edge 4-5 passes
+  // through the quad; vertex 6 lies exactly on the quad, vertex 7 just above it.
+  gr::TriangleMesh garment, avatar;
+  garment.vertices.resize(8, 3);
+  garment.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5, 0.5, -0.2, 0.5, 0.5, 0.2, 0.3, 0.2,
+      0, 0.3, 0.7, 1e-3;
+  garment.faces.resize(4, 3);
+  garment.faces << 0, 1, 2, 0, 2, 3, 4, 5, 6, 5, 7, 6;
+  avatar.vertices.resize(3, 3);
+  avatar.vertices << 5, 5, 5, 6, 5, 5, 5, 6, 5;
+  avatar.faces.resize(1, 3);
+  avatar.faces << 0, 1, 2;
+  gr::ContactMesh mesh = gr::ContactMesh::build(garment, avatar, true);
+  CHECK(gr::tangled_pairs_closer_than(mesh, garment.vertices, 1e-6).empty());  // no tangle
+  mesh.garment_tangles.assign(8, 0);
+  const auto keys = gr::tangled_pairs_closer_than(mesh, garment.vertices, 1e-6);
+  CHECK(std::is_sorted(keys.begin(), keys.end()));
+  // Vertex 6 on face 0 (0, 1, 2) touches it; vertex 7, 1e-3 above face 1, does not count.
+  CHECK(std::binary_search(keys.begin(), keys.end(), std::array<int, 5>{0, 6, 0, 1, 2}));
+  for (const auto& key : keys) CHECK(!(key[0] == 0 && key[1] == 7));
+  // Every key listed is a pair closer than the gap.
+  for (const auto& key : keys) {
+    const auto at = [&](int v) -> Vector3d { return garment.vertices.row(v).transpose(); };
+    const double d =
+        key[0] == 0 ? gr::point_triangle_distance_sq(at(key[1]), at(key[2]), at(key[3]), at(key[4]))
+                    : gr::edge_edge_distance_sq(at(key[1]), at(key[2]), at(key[3]), at(key[4]));
+    CHECK(d < 1e-12);
+  }
+  // Left out of the search; the pair at 1e-3 is still found.
+  mesh.unmodelled_self_pairs = keys;
+  const gr::Candidates c = gr::find_candidates(mesh, stacked(garment, avatar), 0.01);
+  bool near_pair = false;
+  for (const auto& pt : c.point_triangle) {
+    CHECK_FALSE(std::binary_search(keys.begin(), keys.end(), gr::self_pair_key(pt)));
+    near_pair |= gr::self_pair_key(pt) == std::array<int, 5>{0, 7, 0, 2, 3};
+  }
+  CHECK(near_pair);
+  for (const auto& ee : c.edge_edge)
+    CHECK_FALSE(std::binary_search(keys.begin(), keys.end(), gr::self_pair_key(ee)));
+}
+
 namespace {
 
 /// A shared scene placed for contact, stacked.

@@ -417,5 +417,72 @@ TEST_CASE("Copies of a skinned vertex stay exactly together when read", "[io][gl
   }
 }
 
+TEST_CASE("Several meshes of one file read as one: named, or every mesh of the skin",
+          "[io][gltf]") {
+  const auto dir = test::fresh_temp_dir("gltf_meshes");
+  nlohmann::json json = valid_gltf_json(dir);
+  // Three nodes: the quad ("body"), the quad moved up by 2 ("head"), the quad moved by 5
+  // ("prop"); one skin of one joint drives the first two.
+  json["meshes"][0]["name"] = "body";
+  json["meshes"].push_back(json["meshes"][0]);
+  json["meshes"][1]["name"] = "head";
+  json["meshes"].push_back(json["meshes"][0]);
+  json["meshes"][2]["name"] = "prop";
+  json["meshes"][2]["primitives"][0]["attributes"].erase("NORMAL");
+  json["nodes"] = {{{"name", "body"}, {"mesh", 0}, {"skin", 0}},
+                   {{"name", "head"}, {"mesh", 1}, {"skin", 0}, {"translation", {0.0, 2.0, 0.0}}},
+                   {{"name", "prop"}, {"mesh", 2}, {"translation", {5.0, 0.0, 0.0}}},
+                   {{"name", "root_joint"}}};
+  json["skins"] = {{{"joints", {3}}}};
+  json["scenes"][0]["nodes"] = {0, 1, 2, 3};
+  const std::string path = write_json(json, dir / "avatar.gltf");
+
+  // One mesh by default for a garment: the first skinned one.
+  const GltfAsset first = read_gltf(path);
+  CHECK(first.gltf.mesh_name == "body");
+  CHECK(first.document.faces.size() == 2);
+
+  // The whole skin: body and head, not the unskinned prop.
+  CHECK(gltf_skin_mesh_names(path) == std::vector<std::string>{"body", "head"});
+  const GltfAsset avatar = read_gltf_meshes(path, {});
+  CHECK(avatar.gltf.mesh_name == "body+head");
+  REQUIRE(avatar.document.faces.size() == 4);
+  REQUIRE(avatar.document.positions.rows() == 2 * first.document.positions.rows());
+  REQUIRE(avatar.gltf.primitives.size() == 2);
+  CHECK(avatar.gltf.primitives[1].mesh == 1);
+  CHECK(avatar.gltf.primitives[1].first_face == 2);
+  // The second mesh's corners point at its own positions, which sit where its node puts
+  // them (a skinned vertex without weights stays in its node's frame).
+  for (const auto& corner : avatar.document.faces[2])
+    CHECK(avatar.document.positions(corner.position, 1) >= 2.0);
+  REQUIRE(avatar.gltf.skin.has_value());
+  CHECK(avatar.gltf.skin->joints.size() == 1);
+
+  // Named meshes in the order named; one without normals among ones with them is read.
+  const GltfAsset named = read_gltf_meshes(path, {"prop", "body"});
+  CHECK(named.gltf.mesh_name == "prop+body");
+  REQUIRE(named.document.faces.size() == 4);
+  CHECK(named.document.positions(named.document.faces[0][0].position, 0) >= 5.0);
+  CHECK(named.document.normals.rows() == named.document.positions.rows());
+  CHECK(named.document.faces[0][0].normal == -1);
+  CHECK(named.document.faces[2][0].normal >= 0);
+
+  // Written back as one mesh, each primitive from its own source mesh.
+  const std::string written = (dir / "merged.glb").string();
+  write_glb(written, avatar.document, &avatar.gltf, avatar.document.positions, nullptr);
+  CHECK(read_gltf(written).document.faces.size() == 4);
+
+  REQUIRE_THROWS_WITH(read_gltf_meshes(path, {"body", "body"}),
+                      Catch::Contains("mesh 'body' is named twice"));
+  nlohmann::json two_skins = json;
+  two_skins["skins"].push_back({{"joints", {3}}});
+  two_skins["nodes"][2]["skin"] = 1;
+  REQUIRE_THROWS_WITH(
+      read_gltf_meshes(write_json(two_skins, dir / "two_skins.gltf"), {"body", "prop"}),
+      Catch::Contains("meshes 'body' and 'prop' have different skins"));
+  REQUIRE_THROWS_WITH(read_gltf_meshes(path, {"body", "hat"}),
+                      Catch::Contains("no mesh or node named 'hat'"));
+}
+
 }  // namespace
 }  // namespace gr

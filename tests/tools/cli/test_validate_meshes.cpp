@@ -38,6 +38,21 @@ TEST_CASE("validate picks glTF garment meshes, one per layer or every mesh of a 
   CHECK(every["garments"].size() == gr::gltf_mesh_names(outfit).size() - 1);
   for (const auto& g : every["garments"]) CHECK(g["mesh"] != "Wolf3D_Body");
 
+  // A body of several meshes: repeat --avatar-mesh; "all" then leaves each of them out.
+  const gr::test::CliRun body_and_head = gr::test::run_cli(
+      {"validate", "--garment", outfit, "--garment-mesh", "all", "--avatar", outfit,
+       "--avatar-mesh", "Wolf3D_Body", "--avatar-mesh", "Wolf3D_Head", "--report", report},
+      "validate_body_and_head");
+  const auto layers = nlohmann::json::parse(gr::test::read_text(report));
+  CHECK(layers["garments"].size() == gr::gltf_mesh_names(outfit).size() - 2);
+  CHECK(layers["inputs"]["avatar"]["faces"].get<int>() >
+        every["inputs"]["avatar"]["faces"].get<int>());
+  const gr::test::CliRun unnamed = gr::test::run_cli(
+      {"validate", "--garment", outfit, "--garment-mesh", "all", "--avatar", outfit},
+      "validate_all_unnamed_body");
+  CHECK(unnamed.exit_code == gr::kExitBadInput);
+  CHECK_THAT(unnamed.err, Catch::Contains("needs --avatar-mesh"));
+
   const gr::test::CliRun mismatch =
       gr::test::run_cli({"validate", "--garment", outfit, "--garment", outfit, "--garment-mesh",
                          "a", "b", "c", "--avatar", outfit},

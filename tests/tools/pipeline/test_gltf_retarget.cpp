@@ -290,3 +290,47 @@ TEST_CASE("An OBJ garment written as GLB is certified, validated and gets its re
 }
 
 }  // namespace gr
+
+namespace gr {
+
+TEST_CASE("Production outfits retarget onto an undressed body of another shape",
+          "[gltf][shared][real]") {
+  // Garments that cross themselves, come in pieces and close around the body (see
+  // ../shared/data/real/README.md), each onto a whole body of the other sex.
+  const auto [file, mesh] = GENERATE(
+      std::make_pair(std::string("female-pose-standing.glb"), std::string("Wolf3D_Outfit_Top.002")),
+      std::make_pair(std::string("male-outfit.glb"), std::string("Wolf3D_Outfit_Bottom")),
+      std::make_pair(std::string("male-outfit.glb"), std::string("Wolf3D_Outfit_Top")));
+  CAPTURE(file, mesh);
+  const std::string garment = test::shared_data("real/" + file);
+  const std::string avatar = test::shared_data("real/female-full-body.glb");
+  const auto out = test::fresh_temp_dir("real_outfit") / "run";
+  const test::CliRun run = test::run_cli({"retarget", "--garment", garment, "--garment-mesh", mesh,
+                                          "--avatar", avatar, "--out", out.string(), "--quiet"},
+                                         "real_outfit");
+  CAPTURE(run.out, run.err);
+  REQUIRE(run.exit_code == 0);
+  const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
+  CHECK(report["shape"]["mean_edge_change"].get<double>() <= 0.30);
+
+  // The written file read back: free of the whole avatar (body, head and eyes merged), and
+  // crossing itself only where the input did.
+  const GltfAsset written = read_gltf((out / "garment.glb").string());
+  const TriangleMesh worn = mesh_as_written(written.document);
+  const TriangleMesh body = mesh_as_written(read_gltf_meshes(avatar, {}).document);
+  CHECK(body.faces.rows() == 14918);
+  CHECK(find_intersecting_face_pairs(worn, body).count == 0);
+  const auto certificate = nlohmann::json::parse(test::read_text(out / "certificate.json"));
+  CHECK(certificate["certified"] == true);
+  CHECK(certificate["counts"]["garment_self_intersections"] == 0);
+  const auto input_faces = read_gltf(garment, mesh).document.faces.size();
+  const auto opened = report["pierced_faces"]["opened"].size();
+  CHECK(written.document.faces.size() == input_faces - opened);
+  CHECK(written.gltf.skin.has_value());
+
+  const ValidatorRun validator = run_gltf_validator((out / "garment.glb").string());
+  CHECK(validator.exit_code == 0);
+  CHECK(validator.summary["errors"] == 0);
+}
+
+}  // namespace gr

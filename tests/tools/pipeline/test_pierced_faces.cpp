@@ -1,11 +1,16 @@
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/obj_document.hpp"
 #include "extremes_support.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/pipeline/pierced_faces.hpp"
@@ -25,6 +30,50 @@ TriangleMesh closed_cube() {
   cube.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2,
       4, 6, 1, 3, 5, 3, 7, 5;
   return cube;
+}
+
+/// A closed box of side 2 around the origin, each side an n×n grid of quads (outward).
+TriangleMesh closed_box(int n) {
+  std::map<std::array<int, 3>, int> index;  // lattice point (in 1/n steps) -> vertex
+  std::vector<Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+  const auto vertex = [&](std::array<int, 3> p) {
+    auto [it, added] = index.emplace(p, static_cast<int>(points.size()));
+    if (added) points.emplace_back(Vector3d(p[0], p[1], p[2]) * (2.0 / n) - Vector3d::Ones());
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int side : {0, n}) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          std::array<std::array<int, 3>, 4> corner{};
+          for (int k = 0; k < 4; ++k) {
+            corner[static_cast<std::size_t>(k)][static_cast<std::size_t>(axis)] = side;
+            corner[static_cast<std::size_t>(k)][static_cast<std::size_t>(u)] =
+                i + (k == 1 || k == 2);
+            corner[static_cast<std::size_t>(k)][static_cast<std::size_t>(v)] = j + (k >= 2);
+          }
+          const int a = vertex(corner[0]), b = vertex(corner[1]), c = vertex(corner[2]),
+                    d = vertex(corner[3]);
+          if (side == n) {
+            triangles.push_back({a, b, c});
+            triangles.push_back({a, c, d});
+          } else {
+            triangles.push_back({a, c, b});
+            triangles.push_back({a, d, c});
+          }
+        }
+    }
+  TriangleMesh box;
+  box.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    box.vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  box.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    box.faces.row(static_cast<Eigen::Index>(f)) << triangles[f][0], triangles[f][1],
+        triangles[f][2];
+  return box;
 }
 
 /// One bone along y from -3 to 3, through the cube's bottom and top.
@@ -58,7 +107,7 @@ TEST_CASE("Bones through a closed shell name its pierced faces", "[pierced]") {
                        Catch::Contains("closed shell or cap"));
 }
 
-TEST_CASE("A capped garment over a skeleton: no valid shrink, naming the faces and bones",
+TEST_CASE("A capped garment over a skeleton: its caps are opened, or it is refused by name",
           "[pierced][cli]") {
   const fs::path dir = test::fresh_temp_dir("pierced_shell");
   // A long body through a closed box: the box's caps cross it, and its bone pierces them.
@@ -67,23 +116,72 @@ TEST_CASE("A capped garment over a skeleton: no valid shrink, naming the faces a
   body.vertices.col(2) *= 0.5;
   body.vertices.col(1) *= 2.5;
   test::write_mesh_obj(dir / "body.obj", body);
-  test::write_mesh_obj(dir / "box.obj", closed_cube());
+  const TriangleMesh box = closed_box(8);
+  test::write_mesh_obj(dir / "box.obj", box);
   std::ofstream(dir / "skeleton.obj")
       << "v 0.1 -2.4 0.2\nv 0.1 0 0.2\nv 0.1 2.4 0.2\nl 1 2\nl 2 3\n";
-  const fs::path out = dir / "out";
-  const test::CliRun run = test::run_cli(
-      {"retarget", "--garment", (dir / "box.obj").string(), "--avatar", (dir / "body.obj").string(),
-       "--source-skeleton", (dir / "skeleton.obj").string(), "--target-skeleton",
-       (dir / "skeleton.obj").string(), "--out", out.string(), "--quality", "fast", "--quiet"},
-      "pierced_shell");
-  CAPTURE(run.out, run.err);
-  CHECK(run.exit_code == kExitNoValidShrink);
-  CHECK_THAT(run.out, Catch::Contains("bones pass through 2 garment faces") &&
-                          Catch::Contains("joint 0-joint 1") && Catch::Contains("joint 1-joint 2"));
-  // The closest shrunk avatar tried is written, with the faces that still cross.
-  CHECK(fs::is_regular_file(out / "closest_shrunk_avatar.obj"));
-  const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
-  CHECK(report["shrink_conflict"]["crossing_garment_faces"].size() >= 2);
-  CHECK_FALSE(report["shrink_conflict"]["crossing_avatar_faces"].empty());
-  CHECK_FALSE(fs::exists(out / "garment.obj"));
+  const auto retarget = [&](const fs::path& out, const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"retarget",
+                                     "--garment",
+                                     (dir / "box.obj").string(),
+                                     "--avatar",
+                                     (dir / "body.obj").string(),
+                                     "--source-skeleton",
+                                     (dir / "skeleton.obj").string(),
+                                     "--target-skeleton",
+                                     (dir / "skeleton.obj").string(),
+                                     "--out",
+                                     out.string(),
+                                     "--quality",
+                                     "fast",
+                                     "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return test::run_cli(args, "pierced_shell");
+  };
+
+  SECTION("opened by default") {
+    const fs::path out = dir / "open";
+    const test::CliRun run = retarget(out, {});
+    CAPTURE(run.out, run.err);
+    REQUIRE(run.exit_code == kExitSuccess);
+    const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
+    const auto& pierced = report["pierced_faces"];
+    CHECK(pierced["bones"] == nlohmann::json({"joint 0-joint 1", "joint 1-joint 2"}));
+    const auto left_out = pierced["left_out_of_contact"].get<std::vector<int>>();
+    const auto opened = pierced["opened"].get<std::vector<int>>();
+    // Only the caps (y = ±1) leave the contact; the opened faces are some of them.
+    CHECK_FALSE(opened.empty());
+    CHECK(opened.size() <= left_out.size());
+    CHECK(left_out.size() < static_cast<std::size_t>(box.faces.rows()) / 4);
+    for (const int f : left_out) {
+      const Vector3d centroid =
+          (box.vertices.row(box.faces(f, 0)) + box.vertices.row(box.faces(f, 1)) +
+           box.vertices.row(box.faces(f, 2)))
+              .transpose() /
+          3.0;
+      CHECK(std::abs(centroid.y()) > 0.5);
+    }
+    // The written box lacks exactly the opened faces, and the certificate read it.
+    const ObjDocument written = read_obj((out / "garment.obj").string());
+    CHECK(written.faces.size() == static_cast<std::size_t>(box.faces.rows()) - opened.size());
+    const auto certificate = nlohmann::json::parse(test::read_text(out / "certificate.json"));
+    CHECK(certificate["certified"] == true);
+    CHECK(certificate["counts"]["garment_avatar_intersections"] == 0);
+  }
+
+  SECTION("refused by name") {
+    const fs::path out = dir / "refuse";
+    const test::CliRun run = retarget(out, {"--pierced", "refuse"});
+    CAPTURE(run.out, run.err);
+    CHECK(run.exit_code == kExitNoValidShrink);
+    CHECK_THAT(run.out, Catch::Contains("bones pass through 2 garment faces") &&
+                            Catch::Contains("joint 0-joint 1") &&
+                            Catch::Contains("joint 1-joint 2"));
+    // The closest shrunk avatar tried is written, with the faces that still cross.
+    CHECK(fs::is_regular_file(out / "closest_shrunk_avatar.obj"));
+    const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
+    CHECK(report["shrink_conflict"]["crossing_garment_faces"].size() >= 2);
+    CHECK_FALSE(report["shrink_conflict"]["crossing_avatar_faces"].empty());
+    CHECK_FALSE(fs::exists(out / "garment.obj"));
+  }
 }
