@@ -395,10 +395,11 @@ std::string pierced_cause(const Inputs& in, ShrinkMode mode) {
 }
 
 /// Shrink: the avatar shrunk free of the garment. With RetargetOptions::open_pierced_faces,
-/// faces the avatar passes through as given leave the avatar contact: first those the
-/// source bones pierce, then, while no shrunk avatar is free of the rest, those the closest
-/// one meets, each with kPiercedRings rings; up to kPiercedShrinks shrinks and
-/// kMaxPiercedFraction of the faces.
+/// faces the avatar passes through as given leave the avatar contact: those the source
+/// bones pierce (without a skeleton: those the closest shrunk avatar meets), then, while
+/// no shrunk avatar is free of the rest, those the closest one meets next to them, each
+/// with kPiercedRings rings; up to kPiercedShrinks shrinks and kMaxPiercedFraction of the
+/// faces. A garment the bones pierce nowhere is never opened.
 /// @throw NoValidShrinkError from the last shrink tried.
 ShrinkResult shrink_stage(Run& run, Inputs& in, const Eigen::MatrixXd& skin_weights,
                           const SignedDistanceGrid& grid) {
@@ -454,8 +455,24 @@ ShrinkResult shrink_stage(Run& run, Inputs& in, const Eigen::MatrixXd& skin_weig
     } catch (const NoValidShrinkError& e) {
       if (attempt == kPiercedShrinks || e.closest().rows() != in.normalized.avatar.vertices.rows())
         throw;
-      const std::vector<int> met = faces_against_shrunk_avatar(
+      std::vector<int> met = faces_against_shrunk_avatar(
           TriangleMesh{e.closest(), in.normalized.avatar.faces}, garment);
+      // With a skeleton the bones say where the body passes through the garment: only
+      // the region around the faces they pierce grows. Without, the closest shrunk avatar
+      // (the body's core) says it first.
+      if (in.normalized.source_skeleton || !in.pierced_faces.empty()) {
+        std::vector<char> near(static_cast<std::size_t>(garment.vertices.rows()), 0);
+        for (const int f : in.pierced_faces)
+          for (int k = 0; k < 3; ++k) near[static_cast<std::size_t>(garment.faces(f, k))] = 1;
+        met.erase(std::remove_if(met.begin(), met.end(),
+                                 [&](int f) {
+                                   for (int k = 0; k < 3; ++k)
+                                     if (near[static_cast<std::size_t>(garment.faces(f, k))])
+                                       return false;
+                                   return true;
+                                 }),
+                  met.end());
+      }
       const std::size_t before = in.pierced_faces.size();
       if (!leave_out(met) || in.pierced_faces.size() == before) throw;
       run.progress.log("shrink",
