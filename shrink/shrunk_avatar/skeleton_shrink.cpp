@@ -134,7 +134,7 @@ class CrossingCollapse {
   CrossingCollapse(const TriangleMesh& avatar, const Skeleton& source,
                    const BonePlacement& placement)
       : faces_(avatar.faces), source_(source), placement_(placement), hops_(joint_hops(source)),
-        collapsed_(static_cast<std::size_t>(avatar.vertices.rows()), 0) {}
+        bone_(placement.bone), collapsed_(static_cast<std::size_t>(avatar.vertices.rows()), 0) {}
 
   /// Moves every vertex of the listed avatar faces `step` of the way toward its anchor.
   void apply(const FacePairList& crossing, double step, MatrixX3d& vertices) {
@@ -153,9 +153,12 @@ class CrossingCollapse {
       std::sort(bones.begin(), bones.end());
       bones.erase(std::unique(bones.begin(), bones.end()), bones.end());
       const Vector3d x = vertices.row(v).transpose();
-      const Vector3d anchor = bones.size() > 1 ? meeting_joint(bones, x)
-                                               : Vector3d(placement_.on_bone.row(v).transpose());
-      vertices.row(v) = (anchor + (1.0 - step) * (x - anchor)).transpose();
+      if (bones.size() == 1) {
+        const Vector3d anchor = placement_.on_bone.row(v).transpose();
+        vertices.row(v) = (anchor + (1.0 - step) * (x - anchor)).transpose();
+      } else {
+        vertices.row(v) = toward_meeting_joint(v, meeting_joint(bones, x), x, step).transpose();
+      }
       collapsed_[static_cast<std::size_t>(v)] = 1;
     }
   }
@@ -163,15 +166,47 @@ class CrossingCollapse {
   int collapsed_count() const {
     return static_cast<int>(std::count(collapsed_.begin(), collapsed_.end(), 1));
   }
-  void reset() { std::fill(collapsed_.begin(), collapsed_.end(), 0); }
+  void reset() {
+    std::fill(collapsed_.begin(), collapsed_.end(), 0);
+    bone_ = placement_.bone;
+  }
 
  private:
-  Eigen::Index bone_of(int v) const { return placement_.bone[static_cast<std::size_t>(v)]; }
+  Eigen::Index bone_of(int v) const { return bone_[static_cast<std::size_t>(v)]; }
+
+  /// Where a vertex moves in one round toward the joint `meeting`: along the skeleton, not
+  /// straight (a straight line from an arm to the spine leaves the sleeve through the
+  /// armpit). It heads for the end of its bone nearer to the meeting joint; once there, it
+  /// takes the next bone of the path as its own.
+  Vector3d toward_meeting_joint(int v, Eigen::Index meeting, const Vector3d& x, double step) {
+    Eigen::Index& bone = bone_[static_cast<std::size_t>(v)];
+    const auto hops_to = [&](Eigen::Index joint) { return hops_(joint, meeting); };
+    const Eigen::Index a = source_.bones(bone, 0), b = source_.bones(bone, 1);
+    const Eigen::Index end = hops_to(a) <= hops_to(b) ? a : b;
+    const Vector3d target = source_.joints.row(end).transpose();
+    const Vector3d moved = target + (1.0 - step) * (x - target);
+    const double length = (source_.joints.row(a) - source_.joints.row(b)).norm();
+    if (end == meeting || (moved - target).norm() > kArrived * length) return moved;
+    // Arrived at the bone's end (all but: vertices never meet exactly): on along the next
+    // bone of a shortest path.
+    for (Eigen::Index next = 0; next < source_.bones.rows(); ++next) {
+      const Eigen::Index p = source_.bones(next, 0), q = source_.bones(next, 1);
+      const Eigen::Index far = p == end ? q : q == end ? p : -1;
+      if (far >= 0 && hops_to(far) < hops_to(end)) {
+        bone = next;
+        break;
+      }
+    }
+    return moved;
+  }
+
+  /// A vertex this close to its bone's end (in bone lengths) has arrived there.
+  static constexpr double kArrived = 1e-3;
 
   /// The source joint where `bones` meet: fewest bones from the farthest of them (the
   /// shared joint of two bones that touch, the middle of the path between two that do not),
   /// then fewest in total, then nearest to x.
-  Vector3d meeting_joint(const std::vector<Eigen::Index>& bones, const Vector3d& x) const {
+  Eigen::Index meeting_joint(const std::vector<Eigen::Index>& bones, const Vector3d& x) const {
     std::tuple<int, int, double> best{std::numeric_limits<int>::max(), 0, 0.0};
     Eigen::Index best_joint = 0;
     for (Eigen::Index j = 0; j < source_.joints.rows(); ++j) {
@@ -189,13 +224,14 @@ class CrossingCollapse {
         best_joint = j;
       }
     }
-    return source_.joints.row(best_joint).transpose();
+    return best_joint;
   }
 
   const MatrixX3i& faces_;
   const Skeleton& source_;
   const BonePlacement& placement_;
   Eigen::MatrixXi hops_;
+  std::vector<Eigen::Index> bone_;  ///< each vertex's bone, moved on along paths to joints
   std::vector<char> collapsed_;
 };
 

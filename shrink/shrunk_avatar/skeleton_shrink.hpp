@@ -42,12 +42,13 @@ struct SkeletonShrinkOptions {
 /// A triangle whose corners land on two bones meeting at an angle spans the corner between
 /// them (the armpit between shoulder and upper arm) and may cross the garment there, though
 /// the bones themselves are inside it. So while the shrunk avatar's surface crosses the
-/// garment, every vertex of a crossing face moves `collapse_step` of the way toward its
-/// anchor: the end of its own bone nearest (in bones) to the bones of the other corners of
-/// its crossing faces (the joint they meet at), or its point on the bone when those corners
-/// share its bone. Each round is certified; faces that shrink toward a joint stay
-/// non-degenerate (a homothety toward a point), only smaller. When the rounds run out or a
-/// garment vertex is inside, the pullback is halved and the rounds start again.
+/// garment, every vertex of a crossing face moves `collapse_step` of the way toward the
+/// joint where the bones of the corners of its crossing faces meet, along the bones: toward
+/// the end of its own bone nearer to that joint, and once there on along the next bone of
+/// the path (a straight line from an arm to the spine would leave the sleeve through the
+/// armpit); or toward its point on the bone when those corners share its bone. Each round
+/// is certified; faces that shrink toward a joint stay non-degenerate, only smaller. When the
+/// rounds run out or a garment vertex is inside, the pullback is halved and the rounds start again.
 /// Certified with find_shrink_conflict.
 /// @param avatar #V×3 / #F×3, normalized scene units (the target skeleton's frame).
 /// @param garment in the same frame; the source skeleton sits inside it.

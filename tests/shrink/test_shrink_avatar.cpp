@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <catch2/catch.hpp>
 
@@ -130,4 +132,48 @@ TEST_CASE("skeleton shrink pulls a face spanning a bent skeleton toward the join
   REQUIRE_THROWS_AS(
       shrink_to_skeleton(avatar, garment, skeleton, skeleton, Eigen::MatrixXd(), options),
       NoValidShrinkError);
+}
+
+TEST_CASE("skeleton shrink pulls a corner along the bones to a joint two bones away",
+          "[shrink][skeleton]") {
+  // A body of two arms: bones 0-1 and 1-2 to the right (shoulder at joint 1), 0-3 and 3-4
+  // to the left. One avatar triangle spans from the right arm to the left arm. A garment
+  // wall at x = 1 closes the right armpit below y = 0.6: a corner going straight from the
+  // right arm to joint 0 would cross it; along the bones it passes over it, by the shoulder.
+  Skeleton skeleton;
+  skeleton.joints.resize(5, 3);
+  skeleton.joints << 0, 0, 0, 1, 1, 0, 2, 0, 0, -1, 1, 0, -2, 0, 0;
+  skeleton.bones.resize(4, 2);
+  skeleton.bones << 0, 1, 1, 2, 0, 3, 3, 4;
+  TriangleMesh avatar;
+  avatar.vertices.resize(3, 3);
+  avatar.vertices << 1.8, 0.2, 0.0, -1.8, 0.2, 0.0, 0.0, 0.05, 0.01;
+  avatar.faces.resize(1, 3);
+  avatar.faces << 0, 1, 2;
+  TriangleMesh wall;
+  wall.vertices.resize(4, 3);
+  wall.vertices << 1, -0.5, -0.2, 1, 0.6, -0.2, 1, 0.6, 0.2, 1, -0.5, 0.2;
+  wall.faces.resize(2, 3);
+  wall.faces << 0, 1, 2, 0, 2, 3;
+  REQUIRE(find_intersecting_face_pairs(avatar, wall).count > 0);
+
+  SkeletonShrinkOptions options;
+  options.max_halvings = 0;
+  const ShrinkResult result =
+      shrink_to_skeleton(avatar, wall, skeleton, skeleton, Eigen::MatrixXd(), options);
+  test::require_certified(avatar, result, wall);
+  REQUIRE_FALSE(test::has_coincident_corners({result.vertices, avatar.faces}));
+  // The right corner left its arm by the shoulder: it lies on the skeleton, on the right
+  // side of the wall's top or past the shoulder, never in the armpit below it.
+  const Vector3d corner = result.vertices.row(0).transpose();
+  CAPTURE(corner.transpose());
+  double to_skeleton = std::numeric_limits<double>::infinity();
+  for (Eigen::Index b = 0; b < skeleton.bones.rows(); ++b) {
+    const Vector3d a = skeleton.joints.row(skeleton.bones(b, 0)).transpose();
+    const Vector3d d = skeleton.joints.row(skeleton.bones(b, 1)).transpose() - a;
+    const double s = std::clamp((corner - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    to_skeleton = std::min(to_skeleton, (a + s * d - corner).norm());
+  }
+  CHECK(to_skeleton < 0.05);
+  CHECK((corner.x() >= 1.0 || corner.y() >= 0.6 || corner.x() < 0.6));
 }

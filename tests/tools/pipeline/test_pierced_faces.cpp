@@ -185,3 +185,24 @@ TEST_CASE("A capped garment over a skeleton: its caps are opened, or it is refus
     CHECK_FALSE(fs::exists(out / "garment.obj"));
   }
 }
+
+TEST_CASE("The puffer on the T-rex, a body far from the garment's, is certified with its shape",
+          "[shared][skeleton]") {
+  // Skeletons and the puffer's no-fit list, no skin weights: the T-rex is bound to its
+  // skeleton, and its arms, chest and tail land on the source skeleton's bones.
+  const auto data = [](const std::string& file) { return test::shared_data(file); };
+  const fs::path out = test::fresh_temp_dir("trex_puffer") / "run";
+  const test::CliRun run = test::run_cli(
+      {"retarget", "--garment", data("garments/puffer/garment.obj"), "--avatar",
+       data("avatars/trex/avatar.obj"), "--source-skeleton", data("garments/puffer/skeleton.obj"),
+       "--target-skeleton", data("avatars/trex/skeleton.obj"), "--no-fit",
+       data("garments/puffer/no-fit.txt"), "--out", out.string(), "--quiet"},
+      "trex_puffer");
+  CAPTURE(run.out, run.err);
+  REQUIRE(run.exit_code == kExitSuccess);
+  const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
+  CHECK(report["shape"]["mean_edge_change"].get<double>() <= 0.30);
+  CHECK(report["pierced_faces"]["opened"].empty());
+  const auto certificate = nlohmann::json::parse(test::read_text(out / "certificate.json"));
+  CHECK(certificate["certified"] == true);
+}
