@@ -36,7 +36,7 @@ __all__ = [
 ]
 __version__ = version
 
-#: Exit codes of the command line (README, "Exit codes") by name.
+#: Exit codes of the command line (docs/exit-codes.md) by name.
 STATUS_BY_EXIT_CODE = {
     0: "certified",
     1: "not_certified",

@@ -2,7 +2,7 @@
 
 namespace gr {
 
-/// Exit codes of `garment-retarget`, documented in the README.
+/// Exit codes of `garment-retarget`, documented in docs/exit-codes.md.
 enum ExitCode : int {
   kExitSuccess = 0,        ///< done; for retarget and validate: certified intersection-free
   kExitIntersections = 1,  ///< validate found intersections; retarget's output failed certification

@@ -13,7 +13,7 @@ namespace gr {
 constexpr std::size_t kDefaultListedIssues = 100;
 
 /// The validation report as JSON, schema "garment-retarget/validation-report/1"
-/// (documented in README.md, "Validation report"): tool version, inputs with SHA-256,
+/// (documented in docs/validation.md, "Validation report"): tool version, inputs with SHA-256,
 /// counts by category, issues (errors, warnings, infos with codes), per-garment and
 /// per-garment-pair findings with face indices (0-based, in the file's triangulated face
 /// order), clearances in the input's units, and `certified`.
