@@ -19,7 +19,7 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-from ._core import InputError, OutputError, UsageError, read_mesh, run_command, version
+from ._core import InputError, OutputError, UsageError, outcome_names, read_mesh, run_command, version
 
 __all__ = [
     "InputError",
@@ -36,16 +36,8 @@ __all__ = [
 ]
 __version__ = version
 
-#: Exit codes of the command line (docs/exit-codes.md) by name.
-STATUS_BY_EXIT_CODE = {
-    0: "certified",
-    1: "not_certified",
-    3: "no_valid_shrink",
-    4: "solver_failure",
-    7: "shape_changed",
-    8: "jobs_failed",
-    9: "limit_reached",
-}
+#: Exit codes of the command line by name (docs/exit-codes.md), from its outcome table.
+STATUS_BY_EXIT_CODE = dict(outcome_names)
 
 
 def program_path() -> str:

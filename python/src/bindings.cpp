@@ -18,7 +18,7 @@
 #include "core/io/obj_document.hpp"
 #include "tools/batch/batch_run.hpp"
 #include "tools/cli/commands.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/run_control.hpp"
 
 namespace nb = nanobind;
@@ -64,7 +64,7 @@ int run_command(const std::vector<std::string>& arguments) {
       const nb::gil_scoped_release unlocked;
       app->parse(reversed);
     }
-    if (exit_code == gr::kExitInterrupted) {
+    if (exit_code == gr::to_exit_code(gr::Outcome::kInterrupted)) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
       throw nb::python_error();
     }
@@ -162,6 +162,9 @@ NB_MODULE(_core, m) {
   nb::exception<gr::OutputError>(m, "OutputError", PyExc_OSError);
   nb::exception<CLI::ParseError>(m, "UsageError", PyExc_ValueError);
   m.attr("version") = GR_VERSION;
+  nb::dict outcomes;
+  for (const gr::OutcomeRow& row : gr::outcome_table()) outcomes[nb::int_(row.exit_code)] = row.name;
+  m.attr("outcome_names") = outcomes;
   m.def("run_command", &run_command, nb::arg("arguments"),
         "Runs `garment-retarget ARGUMENTS...` in this process and returns its exit code.");
   m.def("read_mesh", &read_mesh, nb::arg("path"),

@@ -64,7 +64,7 @@ class BatchProgress {
     const std::lock_guard<std::mutex> lock(mutex_);
     ++done_;
     if (outcome.reused) ++reused_;
-    if (!outcome.reused && outcome.status != "certified" && outcome.status != "shape_changed")
+    if (!outcome.reused && !outcome.ended_certified())
       ++failed_;
     if (quiet_) return;
     const std::size_t remaining = total_ - done_;
@@ -181,7 +181,7 @@ BatchResult run_batch(const std::vector<BatchJob>& jobs, const BatchOptions& opt
   for (const JobOutcome& outcome : result.outcomes) {
     if (outcome.reused)
       ++result.reused;
-    else if (outcome.status == "certified" || outcome.status == "shape_changed")
+    else if (outcome.ended_certified())
       ++result.ran;
     else
       ++result.failed;

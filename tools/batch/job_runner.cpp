@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -19,7 +20,7 @@
 #include "core/common/errors.hpp"
 #include "core/common/stopwatch.hpp"
 #include "core/io/atomic_file.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/output_folder.hpp"
 
 namespace gr {
@@ -98,7 +99,8 @@ bool certified_outputs(const fs::path& folder, const nlohmann::json& record,
                        const std::string& key) {
   if (!record.is_object() || record.value("key", "") != key) return false;
   const int exit_code = record.value("exit_code", -1);
-  if (exit_code != kExitSuccess && exit_code != kExitShapeChanged) return false;
+  const std::optional<Outcome> outcome = outcome_for_exit_code(exit_code);
+  if (!outcome || !certified(*outcome)) return false;
   const nlohmann::json certificate = read_json_or_null((folder / "certificate.json").string());
   return certificate.is_object() && certificate.value("certified", false) &&
          fs::is_regular_file(folder / "garment.obj");
@@ -126,20 +128,15 @@ nlohmann::json read_json_or_null(const std::string& path) {
   }
 }
 
+bool JobOutcome::ended_certified() const {
+  const std::optional<Outcome> outcome = outcome_for_exit_code(exit_code);
+  return outcome && certified(*outcome);
+}
+
 std::string status_for_exit_code(int exit_code) {
-  switch (exit_code) {
-    case kExitSuccess: return "certified";
-    case kExitIntersections: return "not_certified";
-    case kExitBadInput: return "bad_input";
-    case kExitNoValidShrink: return "no_valid_shrink";
-    case kExitSolverFailure: return "solver_failure";
-    case kExitOutputError: return "output_error";
-    case kExitShapeChanged: return "shape_changed";
-    case kExitLimitReached: return "limit_reached";
-    case kExitInterrupted: return "interrupted";
-    case -1: return "crashed";
-    default: return "internal_error";
-  }
+  if (exit_code == -1) return "crashed";
+  const std::optional<Outcome> outcome = outcome_for_exit_code(exit_code);
+  return outcome ? to_string(*outcome) : to_string(Outcome::kInternalError);
 }
 
 JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
@@ -183,7 +180,7 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
   if (outcome.exit_code == -1)
     outcome.error =
         fmt::format("killed by signal {} ({})", signal_number, strsignal(signal_number));
-  else if (outcome.exit_code != kExitSuccess)
+  else if (outcome.exit_code != to_exit_code(Outcome::kCertified))
     outcome.error = error_line(log_path);
 
   nlohmann::json inputs = nlohmann::json::object();

@@ -11,14 +11,16 @@ namespace gr {
 /// How one job of a batch ended.
 struct JobOutcome {
   std::string id;
-  /// certified, shape_changed, not_certified, no_valid_shrink, solver_failure, bad_input,
-  /// output_error, internal_error or crashed; "reused" is set when certified outputs were
+  /// The name of its exit code's Outcome (status_for_exit_code), "crashed" or "missing"; "reused" is set when certified outputs were
   /// found and nothing ran.
   std::string status;
   int exit_code = -1;  ///< the retarget command's; -1 when it died of a signal
   bool reused = false;
   double seconds = 0.0;  ///< wall time of the run that made the outputs
   std::string error;     ///< the run's last error line; empty when it succeeded
+
+  /// Whether the job's garment was written and certified (its exit code's Outcome).
+  bool ended_certified() const;
 };
 
 /// Where one job runs: the `garment-retarget` program, its thread count and the batch
@@ -51,7 +53,7 @@ void remove_interrupted_jobs(const std::string& out_dir);
 /// folder from an older or interrupted run).
 nlohmann::json read_json_or_null(const std::string& path);
 
-/// The status name of a retarget exit code (see exit_codes.hpp).
+/// The status name of a retarget exit code (outcome_table()); "crashed" for -1 (killed).
 std::string status_for_exit_code(int exit_code);
 
 }  // namespace gr

@@ -71,13 +71,13 @@ std::string binding_rows(const std::string& shared) {
   return rows;
 }
 
-std::string exit_name(gr::RetargetStatus status) {
+std::string exit_name(gr::Outcome status) {
   switch (status) {
-    case gr::RetargetStatus::kCertified: return "0";
-    case gr::RetargetStatus::kNotCertified: return "1";
-    case gr::RetargetStatus::kNoValidShrink: return "3";
-    case gr::RetargetStatus::kSolverFailure: return "4";
-    case gr::RetargetStatus::kShapeChanged: return "7";
+    case gr::Outcome::kCertified: return "0";
+    case gr::Outcome::kNotCertified: return "1";
+    case gr::Outcome::kNoValidShrink: return "3";
+    case gr::Outcome::kSolverFailure: return "4";
+    case gr::Outcome::kShapeChanged: return "7";
   }
   return "?";
 }

@@ -310,12 +310,12 @@ int main(int argc, char** argv) {
             {q == "balanced" ? "tight" : q + " tight", q, false, {}, gr::FitMode::kTight});
     for (const double e : eps_sweep) {
       Config c{fmt::format("eps_tol={:g}", e), "balanced", false, {}};
-      c.overrides.eps_tol = e;
+      c.overrides.set("eps_tol", e);
       configs.push_back(c);
     }
     for (const double v : voxel_sweep) {
       Config c{fmt::format("voxel={:g}", v), "balanced", false, {}};
-      c.overrides.voxel_size = v;
+      c.overrides.set("voxel_size", v);
       configs.push_back(c);
     }
     for (const Config& config : configs) {

@@ -7,7 +7,8 @@
 #include "core/common/errors.hpp"
 #include "tools/batch/batch_run.hpp"
 #include "tools/cli/commands.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
+#include "tools/pipeline/parameters.hpp"
 
 namespace gr {
 
@@ -38,6 +39,15 @@ void check_batch_options(const std::string& manifest, const std::vector<BatchJob
         throw InputError(manifest, job.line,
                          flag ? fmt::format("\"{}\" is a flag: give true or false", name)
                               : fmt::format("\"{}\" needs a value, not a boolean", name));
+      // A knob's value is checked here, against its row, so that the job is refused before
+      // any job runs.
+      const ParameterRow* knob = find_parameter_option(name);
+      if (knob == nullptr || knob->type == ParameterType::kSwitch) continue;
+      if (!value.is_number())
+        throw InputError(manifest, job.line, fmt::format("\"{}\" must be a number", name));
+      const std::string error = parameter_value_error(*knob, value.get<double>());
+      if (!error.empty())
+        throw InputError(manifest, job.line, fmt::format("\"{}\" {}", name, error));
     }
   }
 }
@@ -83,7 +93,7 @@ void add_batch_command(CLI::App& root, int& exit_code) {
     std::printf("%d jobs: %d computed, %d reused, %d failed in %.1f s; summary: %s/summary.csv\n",
                 static_cast<int>(jobs.size()), result.ran, result.reused, result.failed,
                 result.seconds, options->batch.out_dir.c_str());
-    exit_code = result.failed == 0 ? kExitSuccess : kExitBatchJobsFailed;
+    exit_code = result.failed == 0 ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kJobsFailed);
   });
 }
 

@@ -14,6 +14,7 @@ struct ShapeThresholds;
 struct InferenceOptions;
 struct RunLimits;
 class RunStopped;
+class ParameterOverrides;
 
 /// The options naming a scene's files: --garment, --avatar, --out (all required), and the
 /// optional --source-skeleton / --target-skeleton pair and --skin-weights.
@@ -31,8 +32,13 @@ void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptio
 /// --max-memory-mb and --timeout, written into `limits`.
 void add_limit_options(CLI::App& command, RunLimits& limits);
 
-/// Prints a stopped run's error line; returns its exit code (kExitLimitReached or
-/// kExitInterrupted).
+/// One option per knob of parameter_table() that the command line may set (--dhat,
+/// --w-fit, --no-self-contact, ...), each checked against its row's range and written into
+/// `overrides`; the help gives each preset's value.
+void add_parameter_options(CLI::App& command, ParameterOverrides& overrides);
+
+/// Prints a stopped run's error line; returns its exit code (to_exit_code(Outcome::kLimitReached) or
+/// to_exit_code(Outcome::kInterrupted)).
 int report_stopped_run(const RunStopped& stopped);
 
 /// Each subcommand registers itself on the root app; its callback stores the exit code.

@@ -1,7 +1,7 @@
 #include <cstdio>
 
 #include "tools/cli/commands.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/run_control.hpp"
 
 namespace gr {
@@ -32,7 +32,7 @@ void add_limit_options(CLI::App& command, RunLimits& limits) {
 
 int report_stopped_run(const RunStopped& stopped) {
   std::fprintf(stderr, "garment-retarget: error: %s; nothing was written\n", stopped.what());
-  return stopped.reason() == StopReason::kInterrupted ? kExitInterrupted : kExitLimitReached;
+  return stopped.reason() == StopReason::kInterrupted ? to_exit_code(Outcome::kInterrupted) : to_exit_code(Outcome::kLimitReached);
 }
 
 }  // namespace gr

@@ -2,25 +2,10 @@
 #include <cstdio>
 
 #include "tools/cli/commands.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/retarget.hpp"
 
 namespace gr {
-
-namespace {
-
-int exit_code_for(RetargetStatus status) {
-  switch (status) {
-    case RetargetStatus::kCertified: return kExitSuccess;
-    case RetargetStatus::kNotCertified: return kExitIntersections;
-    case RetargetStatus::kNoValidShrink: return kExitNoValidShrink;
-    case RetargetStatus::kSolverFailure: return kExitSolverFailure;
-    case RetargetStatus::kShapeChanged: return kExitShapeChanged;
-  }
-  return kExitInternalError;
-}
-
-}  // namespace
 
 void add_retarget_command(CLI::App& root, int& exit_code) {
   auto options = std::make_shared<RetargetOptions>();
@@ -78,69 +63,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
          "bones)")
       ->check(CLI::IsMember({"open", "refuse"}))
       ->default_str("open");
-  auto& o = options->overrides;
-  const char* units = " (normalized scene units: the avatar is about 2 tall)";
-  cmd->add_option("--dhat", o.dhat, std::string("Barrier support distance") + units)
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--fit-dhat", o.fit_dhat,
-                  std::string("Barrier support distance in the fit step (default: --dhat; "
-                              "accurate: half of it)") +
-                      units)
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--eps-tol", o.eps_tol, "Newton stops when the gradient norm is below this")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--voxel-size", o.voxel_size, std::string("Signed-distance grid spacing") + units)
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--fit-samples", o.fit_samples, "Fit quadrature points per face (1, 3 or 6)")
-      ->check(CLI::IsMember({1, 3, 6}));
-  cmd->add_option("--w-contact", o.w_contact, "Barrier stiffness")->check(CLI::PositiveNumber);
-  cmd->add_option("--w-fit", o.w_fit, "Fit term weight")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--w-pos", o.w_pos, "Boundary-loop position weight (with skeletons)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--w-stretch", o.w_stretch,
-                  "Edge-stretch weight against the input garment, without skeletons only "
-                  "(default 1; 0 switches it off)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--w-anchor", o.w_anchor,
-                  "Weight holding boundary loops at their input places, without skeletons "
-                  "only (default 10; 0 switches it off)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--w-tether", o.w_tether,
-                  "Weight pulling every garment vertex to its input place (per unit area) "
-                  "during the inflation, without skeletons only (default 0.01; 0 switches it off)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--w-fit-stretch", o.w_fit_stretch,
-                  "Edge-stretch weight in the fit against the input garment at its inflated "
-                  "size, with skeletons only (default 0.03; 0 switches it off)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--max-newton-iterations", o.max_newton_iterations,
-                  "Iteration cap per Newton solve (each inflation round, and the fit unless "
-                  "--max-fit-iterations is given)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--max-fit-iterations", o.max_fit_iterations,
-                  "Iteration cap of the fit's Newton solve (fast: 40; else as each inflation "
-                  "round)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--pullback", o.skeleton_pullback,
-                  "Skeleton shrink: fraction of each avatar vertex's offset from its bone kept "
-                  "in the shrunk avatar (default 0.25; halved while it meets the garment, and "
-                  "a fifth of it is tried when the inflation stalls)")
-      ->check(CLI::Range(1e-6, 1.0));
-  cmd->add_option("--max-al-rounds", o.max_al_rounds, "Cap on augmented-Lagrangian rounds")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--inflation-step", o.inflation_step_length,
-                  "Largest vertex motion of one inflation step (normalized scene units)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--ccd-separation", o.ccd_min_separation_ratio,
-                  "Fraction of each pair's gap that a CCD-bounded step keeps")
-      ->check(CLI::Range(1e-6, 0.99));
-  cmd->add_flag_function(
-      "--no-self-contact", [&o](std::int64_t) { o.self_contact = false; },
-      "Do not model garment self-contact (the certificate still checks it)");
-  cmd->add_flag_function(
-      "--self-contact-everywhere", [&o](std::int64_t) { o.self_contact_everywhere = true; },
-      "Model garment self-contact also inside regions that provably cannot fold onto\n"
-      "themselves during a step (slower; the same guarantee)");
+  add_parameter_options(*cmd, options->overrides);
   add_shape_check_options(*cmd, options->shape_thresholds);
   add_inference_options(*cmd, options->inputs, options->inference);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
@@ -184,7 +107,7 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
     }
     std::printf("%s\n", result.message.c_str());
     if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());
-    exit_code = exit_code_for(result.status);
+    exit_code = to_exit_code(result.status);
   });
 }
 

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "tools/cli/commands.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
 
 namespace gr {
@@ -62,7 +62,7 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
     std::printf("%s\n", result.message.c_str());
     if (result.found) std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());
     std::printf("report: %s\n", result.report_path.c_str());
-    exit_code = result.found ? kExitSuccess : kExitNoValidShrink;
+    exit_code = result.found ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kNoValidShrink);
   });
 }
 

@@ -9,7 +9,7 @@
 #include "core/common/errors.hpp"
 #include "core/io/gltf_document.hpp"
 #include "tools/cli/commands.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/result_page.hpp"
 #include "validate/certify/validation.hpp"
@@ -183,9 +183,9 @@ void add_validate_command(CLI::App& root, int& exit_code) {
           shapes[g].area_change, shapes[g].loop_displacement);
     if (!shape_warnings.empty()) summary += "; SHAPE CHANGED beyond its thresholds";
     std::printf("%s\n", summary.c_str());
-    exit_code = !validation.result.certified() ? kExitIntersections
-                : shape_warnings.empty()       ? kExitSuccess
-                                               : kExitShapeChanged;
+    exit_code = !validation.result.certified() ? to_exit_code(Outcome::kNotCertified)
+                : shape_warnings.empty()       ? to_exit_code(Outcome::kCertified)
+                                               : to_exit_code(Outcome::kShapeChanged);
   });
 }
 

@@ -1,11 +1,152 @@
 #include "tools/pipeline/parameters.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "core/common/errors.hpp"
 
 namespace gr {
+
+namespace {
+
+using P = PipelineParameters;
+constexpr auto kReal = ParameterType::kReal;
+constexpr auto kCount = ParameterType::kCount;
+constexpr auto kSwitch = ParameterType::kSwitch;
+
+const ParameterRange kPositive{0.0, true};
+const ParameterRange kNonNegative{0.0, false};
+const ParameterRange kAny{-1e300, false};
+
+std::vector<ParameterRow> make_table() {
+  const double dhat = RetargetParameters{}.dhat;
+  return {
+      {"dhat", "dhat", kReal, "length", {}, kPositive, "Barrier support distance", 1.0,
+       [](const P& p) { return p.solver.dhat; }, [](P& p, double v) { p.solver.dhat = v; }},
+      {"fit_dhat", "fit-dhat", kReal, "length", {0.0, 0.0, 0.5 * dhat}, kPositive,
+       "Barrier support distance in the fit step (0 in a preset: dhat)", 1.0,
+       [](const P& p) { return p.solver.fit_support(); },
+       [](P& p, double v) { p.solver.fit_dhat = v; }},
+      {"w_surf", "", kReal, "", {}, kAny, "Surface-shape weight", 1.0,
+       [](const P& p) { return p.solver.w_surf; }, [](P& p, double v) { p.solver.w_surf = v; }},
+      {"w_contact", "w-contact", kReal, "", {1e6, 1e6, 1e6}, kPositive,
+       "Barrier stiffness", 1.0,
+       [](const P& p) { return p.solver.w_contact; },
+       [](P& p, double v) { p.solver.w_contact = v; }},
+      {"w_fit", "w-fit", kReal, "", {}, kNonNegative, "Fit term weight", 1.0,
+       [](const P& p) { return p.solver.w_fit; }, [](P& p, double v) { p.solver.w_fit = v; }},
+      {"w_pos", "w-pos", kReal, "", {}, kNonNegative,
+       "Boundary-loop position weight (with skeletons)", 1.0,
+       [](const P& p) { return p.solver.w_pos; }, [](P& p, double v) { p.solver.w_pos = v; }},
+      {"w_stretch", "w-stretch", kReal, "", {}, kNonNegative,
+       "Edge-stretch weight against the input garment, without skeletons only (0 switches "
+       "it off)",
+       1.0, [](const P& p) { return p.solver.w_stretch; },
+       [](P& p, double v) { p.solver.w_stretch = v; }},
+      {"w_anchor", "w-anchor", kReal, "", {}, kNonNegative,
+       "Weight holding boundary loops at their input places, without skeletons only (0 "
+       "switches it off)",
+       1.0, [](const P& p) { return p.solver.w_anchor; },
+       [](P& p, double v) { p.solver.w_anchor = v; }},
+      {"w_tether", "w-tether", kReal, "", {}, kNonNegative,
+       "Weight pulling every garment vertex to its input place (per unit area) during the "
+       "inflation, without skeletons only (0 switches it off)",
+       1.0, [](const P& p) { return p.solver.w_tether; },
+       [](P& p, double v) { p.solver.w_tether = v; }},
+      {"w_fit_stretch", "w-fit-stretch", kReal, "", {}, kNonNegative,
+       "Edge-stretch weight in the fit against the input garment at its inflated size, with "
+       "skeletons only (0 switches it off)",
+       1.0, [](const P& p) { return p.solver.w_fit_stretch; },
+       [](P& p, double v) { p.solver.w_fit_stretch = v; }},
+      {"eps_tol", "eps-tol", kReal, "", {1e-5, 1e-6, 1e-8}, kPositive,
+       "Newton stops when the gradient norm is below this (also sets the energy tolerance "
+       "that goes with it)",
+       1.0, [](const P& p) { return p.solver.newton.gradient_tolerance; },
+       [](P& p, double v) {
+         p.solver.newton.gradient_tolerance = v;
+         p.solver.newton.energy_tolerance = energy_tolerance_for(v);
+       }},
+      {"step_tolerance", "", kReal, "length", {1e-4, 1e-5, 1e-6}, kPositive,
+       "Newton stops when a step moves nothing further than this", 1.0,
+       [](const P& p) { return p.solver.newton.step_tolerance; },
+       [](P& p, double v) { p.solver.newton.step_tolerance = v; }},
+      {"energy_tolerance", "", kReal, "", {}, kNonNegative,
+       "Newton stops when the energy decreased less than this fraction over its window", 1.0,
+       [](const P& p) { return p.solver.newton.energy_tolerance; },
+       [](P& p, double v) { p.solver.newton.energy_tolerance = v; }},
+      {"energy_window", "", kCount, "", {}, kNonNegative,
+       "Accepted Newton steps the energy tolerance looks back over (0: off)", 1.0,
+       [](const P& p) { return double(p.solver.newton.energy_window); },
+       [](P& p, double v) { p.solver.newton.energy_window = int(v); }},
+      {"max_newton_iterations", "max-newton-iterations", kCount, "", {60, 400, 1000}, kPositive,
+       "Iteration cap per Newton solve (each inflation round, and the fit unless "
+       "--max-fit-iterations is given)",
+       1.0, [](const P& p) { return double(p.solver.newton.max_iterations); },
+       [](P& p, double v) {
+         p.solver.newton.max_iterations = int(v);
+         p.solver.fit_max_iterations = 0;
+       }},
+      {"max_fit_iterations", "max-fit-iterations", kCount, "", {40, 0, 0}, kPositive,
+       "Iteration cap of the fit's Newton solve (0 in a preset: as each inflation round)", 1.0,
+       [](const P& p) { return double(p.solver.fit_iteration_cap()); },
+       [](P& p, double v) { p.solver.fit_max_iterations = int(v); }},
+      {"skeleton_pullback", "pullback", kReal, "", {}, ParameterRange{1e-6, false, 1.0},
+       "Skeleton shrink: fraction of each avatar vertex's offset from its bone kept in the "
+       "shrunk avatar (halved while it meets the garment, and a fifth of it is tried when the "
+       "inflation stalls)",
+       1.0, [](const P& p) { return p.skeleton_pullback; },
+       [](P& p, double v) { p.skeleton_pullback = v; }},
+      {"max_al_rounds", "max-al-rounds", kCount, "", {}, kPositive,
+       "Cap on augmented-Lagrangian rounds", 1.0,
+       [](const P& p) { return double(p.solver.max_al_rounds); },
+       [](P& p, double v) { p.solver.max_al_rounds = int(v); }},
+      {"voxel_size", "voxel-size", kReal, "length", {0.02, 0.01, 0.005}, kPositive,
+       "Signed-distance grid spacing", 1.0, [](const P& p) { return p.voxel_size; },
+       [](P& p, double v) { p.voxel_size = v; }},
+      {"fit_samples_per_face", "fit-samples", kCount, "", {1, 3, 6},
+       ParameterRange{1.0, false, 6.0, {1.0, 3.0, 6.0}}, "Fit quadrature points per face", 1.0,
+       [](const P& p) { return double(p.solver.fit_samples_per_face); },
+       [](P& p, double v) { p.solver.fit_samples_per_face = int(v); }},
+      {"ccd_min_separation_ratio", "ccd-separation", kReal, "", {},
+       ParameterRange{1e-6, false, 0.99}, "Fraction of each pair's gap that a CCD-bounded step keeps",
+       1.0, [](const P& p) { return p.solver.ccd.min_separation_ratio; },
+       [](P& p, double v) { p.solver.ccd.min_separation_ratio = v; }},
+      {"ccd_min_separation", "", kReal, "length", {}, kNonNegative,
+       "Separation every CCD-bounded step keeps", 1.0,
+       [](const P& p) { return p.solver.ccd.min_separation; },
+       [](P& p, double v) { p.solver.ccd.min_separation = v; }},
+      {"self_contact", "no-self-contact", kSwitch, "", {}, ParameterRange{0.0, false, 1.0},
+       "Do not model garment self-contact (the certificate still checks it)", 0.0,
+       [](const P& p) { return p.solver.self_contact ? 1.0 : 0.0; },
+       [](P& p, double v) { p.solver.self_contact = v != 0.0; }},
+      {"self_contact_everywhere", "self-contact-everywhere", kSwitch, "", {},
+       ParameterRange{0.0, false, 1.0},
+       "Model garment self-contact also inside regions that provably cannot fold onto "
+       "themselves during a step (slower; the same guarantee)",
+       1.0, [](const P& p) { return p.solver.self_contact_everywhere ? 1.0 : 0.0; },
+       [](P& p, double v) { p.solver.self_contact_everywhere = v != 0.0; }},
+      {"inflation_step_length", "inflation-step", kReal, "length", {}, kPositive,
+       "Largest vertex motion of one inflation step", 1.0,
+       [](const P& p) { return p.solver.inflation_step_length; },
+       [](P& p, double v) { p.solver.inflation_step_length = v; }},
+  };
+}
+
+std::string range_text(const ParameterRange& r) {
+  if (!r.choices.empty()) {
+    std::string text;
+    for (std::size_t i = 0; i < r.choices.size(); ++i)
+      text += (i == 0 ? "" : i + 1 == r.choices.size() ? " or " : ", ") + fmt::format("{}", r.choices[i]);
+    return text;
+  }
+  if (r.max >= 1e300) return r.min_exclusive ? fmt::format("above {}", r.min) : fmt::format("at least {}", r.min);
+  return fmt::format("in [{}, {}]", r.min, r.max);
+}
+
+}  // namespace
 
 double energy_tolerance_for(double eps_tol) { return 10.0 * std::sqrt(eps_tol); }
 
@@ -24,69 +165,64 @@ Quality parse_quality(const std::string& name) {
   throw InputError("", 0, "unknown quality '" + name + "' (fast, balanced or accurate)");
 }
 
+const std::vector<ParameterRow>& parameter_table() {
+  static const std::vector<ParameterRow> table = make_table();
+  return table;
+}
+
+const ParameterRow* find_parameter(const std::string& name) {
+  for (const ParameterRow& row : parameter_table())
+    if (name == row.name) return &row;
+  return nullptr;
+}
+
+const ParameterRow* find_parameter_option(const std::string& option) {
+  std::string dashed = option;
+  for (char& c : dashed)
+    if (c == '_') c = '-';
+  for (const ParameterRow& row : parameter_table())
+    if (*row.option != '\0' && dashed == row.option) return &row;
+  return nullptr;
+}
+
+std::string parameter_value_error(const ParameterRow& row, double value) {
+  const ParameterRange& r = row.range;
+  if (!std::isfinite(value)) return "must be a finite number";
+  if (row.type != ParameterType::kReal && value != std::floor(value))
+    return "must be a whole number";
+  bool valid = (r.min_exclusive ? value > r.min : value >= r.min) && value <= r.max;
+  if (!r.choices.empty()) {
+    valid = false;
+    for (double choice : r.choices) valid = valid || value == choice;
+  }
+  return valid ? std::string() : "must be " + range_text(r);
+}
+
 PipelineParameters parameters_for_quality(Quality quality) {
   PipelineParameters p;
-  RetargetParameters& s = p.solver;
-  if (quality == Quality::kFast) {
-    s.newton.gradient_tolerance = 1e-5;
-    s.newton.step_tolerance = 1e-4;
-    // A cap on time. goblin_puffer at 80: 146/80 Newton steps (inflate/fit), 11.5 s, fit
-    // error 1.93e-4; at 60: 130/60, 9.8 s, 2.17e-4 (its inflation's first round ends
-    // sooner, so lambda1 doubles sooner). foxgirl_skirt's fit converges in 57 either way.
-    s.newton.max_iterations = 60;
-    // The fit's cap, a cap on time too. goblin_puffer: 56 fit steps uncapped, 3.7 s of
-    // 7.8 s; at 40 its mean fit error was 2.44e-4 against 2.17e-4 at 60 (before the
-    // skeleton shrink's pullback went from 0.05 to 0.25).
-    s.fit_max_iterations = 40;
-    s.fit_samples_per_face = 1;
-    p.voxel_size = 0.02;
-  } else if (quality == Quality::kBalanced) {
-    s.newton.gradient_tolerance = 1e-6;
-    s.newton.step_tolerance = 1e-5;
-    s.newton.max_iterations = 400;
-    s.fit_samples_per_face = 3;
-    p.voxel_size = 0.01;
-  } else {
-    s.newton.gradient_tolerance = 1e-8;
-    s.newton.step_tolerance = 1e-6;
-    s.newton.max_iterations = 1000;
-    s.fit_samples_per_face = 6;
-    s.fit_dhat = 0.5 * s.dhat;
-    p.voxel_size = 0.005;
-  }
-  s.newton.energy_tolerance = energy_tolerance_for(s.newton.gradient_tolerance);
-  s.w_contact = kPresetBarrierStiffness;
+  for (const ParameterRow& row : parameter_table())
+    if (const std::optional<double>& value = row.preset[static_cast<int>(quality)]) row.set(p, *value);
   return p;
 }
 
-void ParameterOverrides::apply_to(PipelineParameters& p) const {
-  RetargetParameters& s = p.solver;
-  if (dhat) s.dhat = *dhat;
-  if (fit_dhat) s.fit_dhat = *fit_dhat;
-  if (w_contact) s.w_contact = *w_contact;
-  if (w_fit) s.w_fit = *w_fit;
-  if (w_pos) s.w_pos = *w_pos;
-  if (w_stretch) s.w_stretch = *w_stretch;
-  if (w_anchor) s.w_anchor = *w_anchor;
-  if (w_tether) s.w_tether = *w_tether;
-  if (w_fit_stretch) s.w_fit_stretch = *w_fit_stretch;
-  if (eps_tol) {
-    s.newton.gradient_tolerance = *eps_tol;
-    s.newton.energy_tolerance = energy_tolerance_for(*eps_tol);
-  }
-  if (voxel_size) p.voxel_size = *voxel_size;
-  if (ccd_min_separation_ratio) s.ccd.min_separation_ratio = *ccd_min_separation_ratio;
-  if (inflation_step_length) s.inflation_step_length = *inflation_step_length;
-  if (max_newton_iterations) {
-    s.newton.max_iterations = *max_newton_iterations;
-    s.fit_max_iterations = 0;
-  }
-  if (max_fit_iterations) s.fit_max_iterations = *max_fit_iterations;
-  if (skeleton_pullback) p.skeleton_pullback = *skeleton_pullback;
-  if (max_al_rounds) s.max_al_rounds = *max_al_rounds;
-  if (fit_samples) s.fit_samples_per_face = *fit_samples;
-  if (self_contact) s.self_contact = *self_contact;
-  if (self_contact_everywhere) s.self_contact_everywhere = *self_contact_everywhere;
+void ParameterOverrides::set(const std::string& name, double value) {
+  const ParameterRow* row = find_parameter(name);
+  if (!row) throw std::invalid_argument("unknown parameter '" + name + "'");
+  if (*row->option == '\0') throw std::invalid_argument("'" + name + "' is set by the preset only");
+  const std::string error = parameter_value_error(*row, value);
+  if (!error.empty()) throw std::invalid_argument(fmt::format("{} {}", name, error));
+  values_[name] = value;
+}
+
+std::optional<double> ParameterOverrides::get(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+void ParameterOverrides::apply_to(PipelineParameters& parameters) const {
+  for (const ParameterRow& row : parameter_table())
+    if (const auto it = values_.find(row.name); it != values_.end()) row.set(parameters, it->second);
 }
 
 }  // namespace gr

@@ -15,42 +15,31 @@ nlohmann::json shape_json(const RetargetReport& r) {
   return shape;
 }
 
+/// Every knob of parameter_table() as the run used it, with the lattice and the units.
+nlohmann::json parameters_json(const RetargetReport& r) {
+  nlohmann::json parameters = nlohmann::json::object();
+  for (const ParameterRow& row : parameter_table()) {
+    const double value = row.get(r.parameters);
+    if (row.type == ParameterType::kCount)
+      parameters[row.name] = static_cast<int>(value);
+    else if (row.type == ParameterType::kSwitch)
+      parameters[row.name] = value != 0.0;
+    else
+      parameters[row.name] = value;
+  }
+  parameters["lattice"] = r.lattice;
+  parameters["units"] = "normalized scene units (avatar about 2 tall)";
+  return parameters;
+}
+
 }  // namespace
 
 nlohmann::json to_json(const RetargetReport& r) {
   using nlohmann::json;
-  const auto& p = r.parameters;
   json report = {
       {"tool", {{"name", "garment-retarget"}, {"version", GR_VERSION}}},
       {"quality", to_string(r.quality)},
-      {"parameters",
-       {{"dhat", p.solver.dhat},
-        {"fit_dhat", p.solver.fit_support()},
-        {"w_surf", p.solver.w_surf},
-        {"w_contact", p.solver.w_contact},
-        {"w_fit", p.solver.w_fit},
-        {"w_pos", p.solver.w_pos},
-        {"w_stretch", p.solver.w_stretch},
-        {"w_anchor", p.solver.w_anchor},
-        {"w_tether", p.solver.w_tether},
-        {"w_fit_stretch", p.solver.w_fit_stretch},
-        {"eps_tol", p.solver.newton.gradient_tolerance},
-        {"step_tolerance", p.solver.newton.step_tolerance},
-        {"energy_tolerance", p.solver.newton.energy_tolerance},
-        {"energy_window", p.solver.newton.energy_window},
-        {"max_newton_iterations", p.solver.newton.max_iterations},
-        {"max_fit_iterations", p.solver.fit_iteration_cap()},
-        {"skeleton_pullback", p.skeleton_pullback},
-        {"max_al_rounds", p.solver.max_al_rounds},
-        {"voxel_size", p.voxel_size},
-        {"fit_samples_per_face", p.solver.fit_samples_per_face},
-        {"ccd_min_separation_ratio", p.solver.ccd.min_separation_ratio},
-        {"ccd_min_separation", p.solver.ccd.min_separation},
-        {"self_contact", p.solver.self_contact},
-        {"self_contact_everywhere", p.solver.self_contact_everywhere},
-        {"inflation_step_length", p.solver.inflation_step_length},
-        {"lattice", r.lattice},
-        {"units", "normalized scene units (avatar about 2 tall)"}}},
+      {"parameters", parameters_json(r)},
       {"seconds",
        {{"read", r.seconds.read},
         {"normalize", r.seconds.normalize},

@@ -854,10 +854,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const StageTimer total;
   // The report is the last file of the folder; a run that did not end certified keeps the
   // earlier result aside, so that it cannot be taken for this run's.
-  const auto finish = [&](RetargetStatus status, std::string message,
+  const auto finish = [&](Outcome status, std::string message,
                           const std::function<void()>& before_commit = {}) {
     const bool certified =
-        status == RetargetStatus::kCertified || status == RetargetStatus::kShapeChanged;
+        status == Outcome::kCertified || status == Outcome::kShapeChanged;
     run.result.status = status;
     run.result.message = std::move(message);
     if (!certified && folder.has_previous()) report.previous_result = folder.previous_path();
@@ -916,7 +916,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     report.seconds.shrink = shrink_timer.seconds();
     report.shrink_conflict =
         write_closest_shrink(run.out.string(), options.out_dir, in.scene, in.normalized, e);
-    return finish(RetargetStatus::kNoValidShrink,
+    return finish(Outcome::kNoValidShrink,
                   fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the garment's "
                               "frame){}",
                               e.what(), where.x(), where.y(), where.z(),
@@ -932,13 +932,13 @@ RetargetResult run_retarget(const RetargetOptions& options) {
         run, in, skin_weights, grid, distance_field, shrunk, solver, inflation);
     // The shrunk avatar is what failed: one the garment can escape from does not exist.
     if (!no_thinner.empty())
-      return finish(RetargetStatus::kNoValidShrink,
+      return finish(Outcome::kNoValidShrink,
                     fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
                                 "failed: {}; and no thinner shrink is free of the garment: {}",
                                 shrunk.pullback, inflation.message, no_thinner));
   }
   if (!inflation.succeeded())
-    return finish(RetargetStatus::kSolverFailure,
+    return finish(Outcome::kSolverFailure,
                   "inflation failed: " + inflation.message +
                       "; allow more work with --max-al-rounds and --max-newton-iterations, or "
                       "widen the barrier with --dhat");
@@ -955,7 +955,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   }
   const FitResult fit = fit_stage(run, solver, inflation.garment);
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(fit.solve.gradient_norm))
-    return finish(RetargetStatus::kSolverFailure, "fit failed: " + fit.solve.message);
+    return finish(Outcome::kSolverFailure, "fit failed: " + fit.solve.message);
 
   open_pierced_stage(run, in, fit.garment, distance_field);
   write_stage(run, in, fit.garment);
@@ -966,10 +966,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   std::string summary =
       measure_stage(run, in, solver.fit_faces, fit.garment, certificate, total.seconds());
   run.progress.log("certify", "{}", summary);
-  RetargetStatus status =
-      report.certified ? RetargetStatus::kCertified : RetargetStatus::kNotCertified;
+  Outcome status =
+      report.certified ? Outcome::kCertified : Outcome::kNotCertified;
   if (report.certified && !shape_violations(report.shape, report.shape_thresholds).empty()) {
-    status = RetargetStatus::kShapeChanged;
+    status = Outcome::kShapeChanged;
     summary += "; SHAPE CHANGED beyond its thresholds";
   }
   return finish(status, summary, [&]() {

@@ -6,6 +6,7 @@
 #include "core/skinning/skin_weight_transfer.hpp"
 #include "tools/pipeline/ease.hpp"
 #include "tools/pipeline/inferred_inputs.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/report.hpp"
 #include "tools/pipeline/run_control.hpp"
@@ -28,7 +29,7 @@ struct RetargetOptions {
   /// Skin weights and no-fit list inferred when inputs.skin_weights / inputs.no_fit are empty.
   InferenceOptions inference;
   /// Limits on the written garment's change of shape from the input (report.json `shape`);
-  /// beyond them the run ends with RetargetStatus::kShapeChanged.
+  /// beyond them the run ends with Outcome::kShapeChanged.
   ShapeThresholds shape_thresholds;
   int threads = 0;      ///< 0: all cores
   bool frames = false;  ///< write intermediate garment/avatar OBJs
@@ -53,19 +54,11 @@ struct RetargetOptions {
   bool open_pierced_faces = true;
 };
 
-/// How a retarget run ended; the command line maps it to an exit code.
-/// kShapeChanged: certified, written, but the garment's shape changed beyond
-/// RetargetOptions::shape_thresholds (each violation is a warning in the report).
-enum class RetargetStatus {
-  kCertified,
-  kNotCertified,
-  kNoValidShrink,
-  kSolverFailure,
-  kShapeChanged
-};
-
+/// How a retarget run ended: kCertified, kNotCertified, kNoValidShrink, kSolverFailure or
+/// kShapeChanged (certified and written, but the garment's shape changed beyond
+/// RetargetOptions::shape_thresholds; each violation is a warning in the report).
 struct RetargetResult {
-  RetargetStatus status = RetargetStatus::kSolverFailure;
+  Outcome status = Outcome::kSolverFailure;
   std::string garment_path;  ///< the written garment, when one was written
   std::string report_path;
   std::string message;  ///< one line for the user

@@ -10,7 +10,7 @@
 #include "cli_runner.hpp"
 #include "core/io/obj_document.hpp"
 #include "test_support.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/extremes_support.hpp"
 
 namespace fs = std::filesystem;
@@ -228,7 +228,7 @@ TEST_CASE("A non-manifold garment is split for the solver and welded back", "[cl
                          "--voxel-size", "0.05"},
                         "nonmanifold_fins");
   CAPTURE(run.out, run.err);
-  REQUIRE(run.exit_code == gr::kExitSuccess);
+  REQUIRE(run.exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   CHECK_THAT(run.err, Catch::Contains("1 edges shared by more than two faces were split"));
   const auto report = nlohmann::json::parse(gr::test::read_text(out / "report.json"));
   CHECK(report["split_non_manifold_edges"]["edges"] == 1);
@@ -319,7 +319,7 @@ TEST_CASE("A garment that crosses itself as given is retargeted with its crossin
        out.string(), "--quality", "fast", "--voxel-size", "0.05"},
       "inherited_crossing");
   CAPTURE(run.err, run.out);
-  REQUIRE(run.exit_code == gr::kExitSuccess);
+  REQUIRE(run.exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   CHECK_THAT(run.out,
              Catch::Contains("0 self intersections (and") && Catch::Contains("inherited)"));
   const auto report = nlohmann::json::parse(gr::test::read_text(out / "report.json"));
@@ -338,12 +338,12 @@ TEST_CASE("A garment that crosses itself as given is retargeted with its crossin
   const std::vector<std::string> validate = {"validate", "--garment",
                                              (out / "garment.obj").string(), "--avatar",
                                              (dir / "sphere.obj").string()};
-  CHECK(gr::test::run_cli(validate, "inherited_validate").exit_code == gr::kExitIntersections);
+  CHECK(gr::test::run_cli(validate, "inherited_validate").exit_code == gr::to_exit_code(gr::Outcome::kNotCertified));
   std::vector<std::string> with_source = validate;
   with_source.insert(with_source.end(), {"--source", garment, "--shape-check", "off"});
   const gr::test::CliRun split = gr::test::run_cli(with_source, "inherited_validate_source");
   CAPTURE(split.out);
-  CHECK(split.exit_code == gr::kExitSuccess);
+  CHECK(split.exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   CHECK_THAT(split.out, Catch::Contains("0 self") && Catch::Contains("inherited self pairs"));
 }
 
@@ -357,7 +357,7 @@ TEST_CASE("bad input: quads and n-gons are triangulated with a warning and the r
                          "--voxel-size", "0.05", "--eps-tol", "1e-2"},
                         "bad_input_quads");
   CAPTURE(run.err, run.out);
-  CHECK(run.exit_code == gr::kExitSuccess);
+  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   CHECK_THAT(run.out, Catch::StartsWith("certified"));
   int warnings = 0;
   for (const auto& line : gr::test::lines_of(run.err))
@@ -381,7 +381,7 @@ TEST_CASE("bad input: garment through the avatar's core, no shrink frees it", "[
                          "--voxel-size", "0.05", "--quiet"},
                         "bad_input_no_shrink");
   CAPTURE(run.err, run.out);
-  CHECK(run.exit_code == gr::kExitNoValidShrink);
+  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kNoValidShrink));
   CHECK(run.err.empty());
   const auto lines = gr::test::lines_of(run.out);
   REQUIRE(lines.size() == 1);

@@ -12,7 +12,7 @@
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "validate/report/file_digest.hpp"
 
@@ -91,7 +91,7 @@ TEST_CASE("Devices, FIFOs and oversized files are refused before they are read",
     auto args = bundled_retarget(out);
     args[2] = c.garment;
     const auto [run, seconds] = timed_run(args, "limits_files");
-    CHECK(run.exit_code == gr::kExitBadInput);
+    CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
     check_one_error_line(run, c.expected);
     CHECK(seconds < 2.0);
     CHECK_FALSE(fs::exists(out));
@@ -100,7 +100,7 @@ TEST_CASE("Devices, FIFOs and oversized files are refused before they are read",
   const auto [run, seconds] =
       timed_run({"validate", "--garment", fifo.string(), "--avatar", bundled("avatar.obj")},
                 "limits_validate");
-  CHECK(run.exit_code == gr::kExitBadInput);
+  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
   check_one_error_line(run, "not a regular file");
   CHECK(seconds < 2.0);
 }
@@ -108,11 +108,11 @@ TEST_CASE("Devices, FIFOs and oversized files are refused before they are read",
 TEST_CASE("Face and memory limits refuse a scene before the solve", "[cli][limits]") {
   const fs::path out = gr::test::fresh_temp_dir("limits_faces") / "out";
   const CliRun faces = gr::test::run_cli(bundled_retarget(out, {"--max-faces", "100"}), "faces");
-  CHECK(faces.exit_code == gr::kExitBadInput);
+  CHECK(faces.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
   check_one_error_line(faces, "more than --max-faces 100");
   const CliRun memory =
       gr::test::run_cli(bundled_retarget(out, {"--max-memory-mb", "10"}), "memory");
-  CHECK(memory.exit_code == gr::kExitBadInput);
+  CHECK(memory.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
   check_one_error_line(memory, "more than --max-memory-mb 10");
   CHECK_FALSE(fs::exists(out));
 }
@@ -121,15 +121,15 @@ TEST_CASE("A run past its timeout ends with exit 9 and writes nothing", "[cli][l
   const fs::path root = gr::test::fresh_temp_dir("limits_timeout");
   const fs::path out = root / "out";
   const CliRun fresh = gr::test::run_cli(bundled_retarget(out, {"--timeout", "0.05"}), "timeout");
-  CHECK(fresh.exit_code == gr::kExitLimitReached);
+  CHECK(fresh.exit_code == gr::to_exit_code(gr::Outcome::kLimitReached));
   check_one_error_line(fresh, "timed out after");
   CHECK_FALSE(fs::exists(out));
 
   // Over an earlier result: that result stays, whole.
-  REQUIRE(gr::test::run_cli(bundled_retarget(out), "timeout_first").exit_code == gr::kExitSuccess);
+  REQUIRE(gr::test::run_cli(bundled_retarget(out), "timeout_first").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   const std::string digest = gr::sha256_of_file((out / "garment.obj").string());
   const CliRun again = gr::test::run_cli(bundled_retarget(out, {"--timeout", "0.05"}), "again");
-  CHECK(again.exit_code == gr::kExitLimitReached);
+  CHECK(again.exit_code == gr::to_exit_code(gr::Outcome::kLimitReached));
   CHECK(gr::sha256_of_file((out / "garment.obj").string()) == digest);
   CHECK(read_json(out / "certificate.json")["extra"]["output"]["sha256"] == digest);
   for (const auto& entry : fs::directory_iterator(root))
@@ -139,13 +139,13 @@ TEST_CASE("A run past its timeout ends with exit 9 and writes nothing", "[cli][l
 TEST_CASE("A failed run keeps the earlier certified result aside", "[cli][transaction]") {
   const fs::path root = gr::test::fresh_temp_dir("failed_run_previous");
   const fs::path out = root / "out";
-  REQUIRE(gr::test::run_cli(bundled_retarget(out), "previous_first").exit_code == gr::kExitSuccess);
+  REQUIRE(gr::test::run_cli(bundled_retarget(out), "previous_first").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   const std::string digest = gr::sha256_of_file((out / "garment.obj").string());
   // One Newton step per round and one round cannot inflate the avatar.
   const CliRun failed = gr::test::run_cli(
       bundled_retarget(out, {"--max-al-rounds", "1", "--max-newton-iterations", "1"}), "failed");
   CAPTURE(failed.out, failed.err);
-  REQUIRE(failed.exit_code == gr::kExitSolverFailure);
+  REQUIRE(failed.exit_code == gr::to_exit_code(gr::Outcome::kSolverFailure));
   const nlohmann::json report = read_json(out / "report.json");
   CHECK(report["certified"] == false);
   CHECK(report["previous_result"] == (root / "out.previous").string());
@@ -165,14 +165,14 @@ TEST_CASE("An output folder that holds an input, or is locked, is refused", "[cl
   args[2] = (scene / "garment.obj").string();
   const std::string before = gr::sha256_of_file((scene / "garment.obj").string());
   const CliRun over_input = gr::test::run_cli(args, "over_input");
-  CHECK(over_input.exit_code == gr::kExitBadInput);
+  CHECK(over_input.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
   check_one_error_line(over_input, "holds the input");
   CHECK(gr::sha256_of_file((scene / "garment.obj").string()) == before);
 
   const fs::path out = root / "out";
   const gr::ResultFolder holder(out.string(), {});
   const CliRun locked = gr::test::run_cli(bundled_retarget(out), "locked");
-  CHECK(locked.exit_code == gr::kExitOutputError);
+  CHECK(locked.exit_code == gr::to_exit_code(gr::Outcome::kOutputError));
   check_one_error_line(locked, "another run is writing this folder");
 }
 
@@ -180,19 +180,19 @@ TEST_CASE("An inferred no-fit list, even an empty one, is read back", "[cli][lim
   const fs::path root = gr::test::fresh_temp_dir("no_fit_round_trip");
   std::vector<std::string> args = bundled_retarget(root / "first");
   args.erase(args.begin() + 5, args.begin() + 7);  // without --no-fit
-  REQUIRE(gr::test::run_cli(args, "infer").exit_code == gr::kExitSuccess);
+  REQUIRE(gr::test::run_cli(args, "infer").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
   const fs::path list = root / "first" / "no-fit.txt";
   REQUIRE(fs::is_regular_file(list));
   std::vector<std::string> again = bundled_retarget(root / "second");
   again[6] = list.string();
   const CliRun reread = gr::test::run_cli(again, "reread");
   CAPTURE(reread.err);
-  CHECK(reread.exit_code == gr::kExitSuccess);
+  CHECK(reread.exit_code == gr::to_exit_code(gr::Outcome::kCertified));
 
   std::ofstream(root / "empty-list.txt") << "# no-fit list inferred by garment-retarget\n";
   again = bundled_retarget(root / "third");
   again[6] = (root / "empty-list.txt").string();
-  CHECK(gr::test::run_cli(again, "empty_list").exit_code == gr::kExitSuccess);
+  CHECK(gr::test::run_cli(again, "empty_list").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
 }
 
 TEST_CASE("Garment and avatar sizes far apart are named, not retargeted", "[cli][limits]") {
@@ -215,7 +215,7 @@ TEST_CASE("Garment and avatar sizes far apart are named, not retargeted", "[cli]
     std::vector<std::string> args = bundled_retarget(root / "out");
     args[4] = avatar.string();
     const CliRun run = gr::test::run_cli(args, "extreme_sizes");
-    CHECK(run.exit_code == gr::kExitBadInput);
+    CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
     check_one_error_line(run, "times the avatar's size");
     CHECK_FALSE(fs::exists(root / "out"));
   }

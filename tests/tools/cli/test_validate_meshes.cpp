@@ -7,7 +7,7 @@
 #include "cli_runner.hpp"
 #include "core/io/gltf_document.hpp"
 #include "test_support.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 
 namespace fs = std::filesystem;
 
@@ -22,7 +22,7 @@ TEST_CASE("validate picks glTF garment meshes, one per layer or every mesh of a 
                          "--report", report},
                         "validate_two_meshes");
   CAPTURE(two.err);
-  CHECK(two.exit_code == gr::kExitIntersections);  // production outfits cross their body
+  CHECK(two.exit_code == gr::to_exit_code(gr::Outcome::kNotCertified));  // production outfits cross their body
   const auto json = nlohmann::json::parse(gr::test::read_text(report));
   REQUIRE(json["garments"].size() == 2);
   CHECK(json["garments"][0]["mesh"] == "Wolf3D_Outfit_Top");
@@ -50,13 +50,13 @@ TEST_CASE("validate picks glTF garment meshes, one per layer or every mesh of a 
   const gr::test::CliRun unnamed = gr::test::run_cli(
       {"validate", "--garment", outfit, "--garment-mesh", "all", "--avatar", outfit},
       "validate_all_unnamed_body");
-  CHECK(unnamed.exit_code == gr::kExitBadInput);
+  CHECK(unnamed.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
   CHECK_THAT(unnamed.err, Catch::Contains("needs --avatar-mesh"));
 
   const gr::test::CliRun mismatch =
       gr::test::run_cli({"validate", "--garment", outfit, "--garment", outfit, "--garment-mesh",
                          "a", "b", "c", "--avatar", outfit},
                         "validate_mesh_mismatch");
-  CHECK(mismatch.exit_code == gr::kExitBadInput);
+  CHECK(mismatch.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
   CHECK_THAT(mismatch.err, Catch::Contains("3 --garment-mesh names for 2 --garment files"));
 }

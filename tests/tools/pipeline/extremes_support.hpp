@@ -243,8 +243,8 @@ inline RetargetOptions synthetic_scene(const std::string& name, const TriangleMe
   RetargetOptions options =
       quiet_options((dir / "garment.obj").string(), (dir / "avatar.obj").string(), dir / "out");
   // The spheres are smooth at this resolution; a finer grid only costs time.
-  options.overrides.voxel_size = kSyntheticVoxelSize;
-  options.overrides.max_newton_iterations = kSyntheticNewtonCap;
+  options.overrides.set("voxel_size", kSyntheticVoxelSize);
+  options.overrides.set("max_newton_iterations", kSyntheticNewtonCap);
   return options;
 }
 
@@ -255,7 +255,7 @@ inline RetargetResult run_and_check(const RetargetOptions& options) {
   INFO(result.message);
   CHECK(result.message.find('\n') == std::string::npos);
   CHECK(std::filesystem::exists(result.report_path));
-  if (result.status == RetargetStatus::kCertified) {
+  if (result.status == Outcome::kCertified) {
     CHECK(std::filesystem::exists(result.garment_path));
     CHECK(std::filesystem::exists(std::filesystem::path(options.out_dir) / "certificate.json"));
   } else {

@@ -11,7 +11,7 @@
 #include "core/io/obj_document.hpp"
 #include "core/test_shapes.hpp"
 #include "test_support.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/ease.hpp"
 
 using namespace gr;
@@ -125,7 +125,7 @@ TEST_CASE("With its source body the skirt keeps its ease; the tight fit paints i
   const std::filesystem::path root = test::fresh_temp_dir("ease_skirt");
   const test::CliRun ease = test::run_cli(skirt_on_foxgirl(root / "ease", {}), "ease_skirt");
   CAPTURE(ease.err);
-  REQUIRE(ease.exit_code == kExitSuccess);
+  REQUIRE(ease.exit_code == to_exit_code(Outcome::kCertified));
   const nlohmann::json kept = read_report(root / "ease")["ease"];
   CAPTURE(kept.dump());
   CHECK(kept["fit"] == "ease");
@@ -137,7 +137,7 @@ TEST_CASE("With its source body the skirt keeps its ease; the tight fit paints i
 
   const test::CliRun tight =
       test::run_cli(skirt_on_foxgirl(root / "tight", {"--fit", "tight"}), "tight_skirt");
-  REQUIRE(tight.exit_code == kExitSuccess);
+  REQUIRE(tight.exit_code == to_exit_code(Outcome::kCertified));
   const nlohmann::json painted = read_report(root / "tight")["ease"];
   CHECK(painted["fit"] == "tight");
   CHECK(painted["median_ratio"].get<double>() < 0.4);
@@ -160,7 +160,7 @@ TEST_CASE("Without a source body the fit is tight, with a warning; ease asks for
                                    "--quiet",
                                    "--out",
                                    (root / "tight").string()};
-  REQUIRE(test::run_cli(args, "ease_bundled").exit_code == kExitSuccess);
+  REQUIRE(test::run_cli(args, "ease_bundled").exit_code == to_exit_code(Outcome::kCertified));
   const nlohmann::json report = read_report(root / "tight");
   CHECK(report["ease"]["fit"] == "tight");
   CHECK(report["ease"]["source"] == "none");
@@ -169,6 +169,6 @@ TEST_CASE("Without a source body the fit is tight, with a warning; ease asks for
   args.back() = (root / "ease").string();
   args.insert(args.end(), {"--fit", "ease"});
   const test::CliRun refused = test::run_cli(args, "ease_refused");
-  CHECK(refused.exit_code == kExitBadInput);
+  CHECK(refused.exit_code == to_exit_code(Outcome::kBadInput));
   CHECK_THAT(refused.err, Catch::Contains("--fit ease needs the garment's source body"));
 }

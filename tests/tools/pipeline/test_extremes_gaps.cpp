@@ -27,7 +27,7 @@ TEST_CASE("extremes: a garment starting a hair's breadth outside the avatar is c
   const RetargetResult result = test::run_and_check(
       test::synthetic_scene(fmt::format("gap_{:g}", gap), test::cap_at_gap(gap)));
   INFO(result.message);
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
   const nlohmann::json report = read_report(result);
   CHECK(report["min_distance"]["normalized"].get<double>() > 0.0);
 }
@@ -37,15 +37,15 @@ TEST_CASE("extremes: barrier support dhat from 1e-5 to 1e-1", "[pipeline][extrem
   CAPTURE(dhat);
   RetargetOptions options =
       test::synthetic_scene(fmt::format("dhat_{:g}", dhat), test::cap_inside());
-  options.overrides.dhat = dhat;
-  options.overrides.max_al_rounds = 4;
+  options.overrides.set("dhat", dhat);
+  options.overrides.set("max_al_rounds", 4);
   // The thinnest barrier never converges (below); fewer steps keep its failure quick.
-  if (dhat < 1e-4) options.overrides.max_newton_iterations = 100;
+  if (dhat < 1e-4) options.overrides.set("max_newton_iterations", 100);
   // At 1e-4 the proximal tether (w_tether) slows the push on t: it needs more rounds.
-  if (dhat == 1e-4) options.overrides.max_al_rounds = 8;
+  if (dhat == 1e-4) options.overrides.set("max_al_rounds", 8);
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
-  if (dhat < 1e-4 && result.status == RetargetStatus::kSolverFailure) {
+  if (dhat < 1e-4 && result.status == Outcome::kSolverFailure) {
     // A barrier this thin acts only within 1e-5 of the avatar and every CCD-bounded step
     // keeps a tenth of each gap, so t crawls: the run stops as stalled (or at the round
     // cap) and says which knobs to turn.
@@ -54,7 +54,7 @@ TEST_CASE("extremes: barrier support dhat from 1e-5 to 1e-1", "[pipeline][extrem
                    Catch::Contains("--dhat"));
     return;
   }
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
   const nlohmann::json report = read_report(result);
   // The solver's avatar is rounded to the lattice: no pair comes within the rounding.
   const double lattice = report["parameters"]["lattice"].get<double>();
@@ -68,12 +68,12 @@ TEST_CASE("extremes: barrier stiffness from 1e4 to 1e12", "[pipeline][extremes][
   CAPTURE(stiffness);
   RetargetOptions options =
       test::synthetic_scene(fmt::format("stiffness_{:g}", stiffness), test::cap_inside());
-  options.overrides.w_contact = stiffness;
+  options.overrides.set("w_contact", stiffness);
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
   // So stiff a barrier dwarfs the fit term that from 1e10 the fit creeps to its cap: the
   // garment is still certified, and the report says the fit stopped early.
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
   if (result.report.fit_status != "converged") {
     REQUIRE_FALSE(result.report.warnings.empty());
     CHECK_THAT(result.report.warnings.back(), Catch::Contains("--max-newton-iterations"));
@@ -86,8 +86,8 @@ TEST_CASE("extremes: Newton tolerance eps_tol from 1e-2 to 1e-10",
   CAPTURE(eps_tol);
   RetargetOptions options =
       test::synthetic_scene(fmt::format("eps_{:g}", eps_tol), test::cap_inside());
-  options.overrides.eps_tol = eps_tol;
+  options.overrides.set("eps_tol", eps_tol);
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
 }

@@ -32,7 +32,7 @@ constexpr double kTentTolerance = 1e-2;
 
 RetargetOptions tent_scene(const std::string& name, const TriangleMesh& garment) {
   RetargetOptions options = test::synthetic_scene(name, garment, tent_avatar());
-  options.overrides.eps_tol = kTentTolerance;
+  options.overrides.set("eps_tol", kTentTolerance);
   return options;
 }
 
@@ -46,7 +46,7 @@ TEST_CASE("extremes: the tent scene without defects is certified",
           "[pipeline][extremes][geometry]") {
   const RetargetResult result = run_tent("tent", tent_patch());
   INFO(result.message);
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
 }
 
 TEST_CASE("extremes: a sliver triangle of aspect ratio 1e6 in the garment",
@@ -67,7 +67,7 @@ TEST_CASE("extremes: a sliver triangle of aspect ratio 1e6 in the garment",
   // edge: the inflation still snaps, but the fit may stall at its cap; the garment is then
   // still certified and the report says the fit is incomplete, naming the knobs.
   CHECK(result.report.inflate_status == "snapped");
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
   if (result.report.fit_status != "converged") {
     REQUIRE_FALSE(result.report.warnings.empty());
     CHECK_THAT(result.report.warnings.back(), Catch::Contains("--max-newton-iterations"));
@@ -88,7 +88,7 @@ TEST_CASE("extremes: an exactly collinear (zero-area) garment face with distinct
   CHECK(std::find_if(pairs.begin(), pairs.end(), [](const FacePair& p) {
           return p.first == 39 && p.second == 54;
         }) != pairs.end());
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
 }
 
 TEST_CASE("extremes: a zero-area garment face on a repeated vertex",
@@ -99,7 +99,7 @@ TEST_CASE("extremes: a zero-area garment face on a repeated vertex",
   const RetargetOptions options = tent_scene("repeated_vertex", garment);
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
   bool warned = false;
   for (const auto& warning : result.report.warnings)
     warned = warned || warning.find("zero-area") != std::string::npos;
@@ -130,7 +130,7 @@ TEST_CASE("extremes: duplicate garment vertices (a seam and unreferenced copies)
   }
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
   CHECK(result.report.garment_vertices == n);
   // The seam stays closed: both copies of each referenced seam vertex end in one place.
   const ObjDocument written = read_obj(result.garment_path);
@@ -154,7 +154,7 @@ TEST_CASE("extremes: garment edges within 1e-10 rad of parallel to avatar edges,
                      .eval();
   const RetargetResult result = test::run_and_check(test::synthetic_scene("parallel", cap));
   INFO(result.message);
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
 }
 
 TEST_CASE("extremes: a garment vertex exactly on an avatar edge is resolved by the shrink",
@@ -181,5 +181,5 @@ TEST_CASE("extremes: a garment vertex exactly on an avatar edge is resolved by t
   const RetargetResult result =
       test::run_and_check(test::synthetic_scene("on_edge", fan, test::octahedron()));
   INFO(result.message);
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
 }

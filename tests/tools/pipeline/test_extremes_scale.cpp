@@ -69,12 +69,12 @@ ScaleScene shared_skirt_scene() {
 /// The garment after inflation and after the fit, retargeted from copies of the scene's
 /// files transformed by x ↦ scale · x + shift and mapped back to the original frame
 /// (#P×3 in input order), with the shrink depth.
-struct Outcome {
+struct ScaledRun {
   MatrixX3d inflated, fitted;
   double shrink_depth;
 };
 
-Outcome retarget_transformed(const ScaleScene& scene, double scale, const Vector3d& shift,
+ScaledRun retarget_transformed(const ScaleScene& scene, double scale, const Vector3d& shift,
                              const std::string& name) {
   const std::string tag = scene.name + "_" + name;
   const fs::path in = test::fresh_temp_dir("extremes_scale_in_" + tag);
@@ -91,7 +91,7 @@ Outcome retarget_transformed(const ScaleScene& scene, double scale, const Vector
   options.frames = true;
   const RetargetResult result = run_retarget(options);
   INFO(tag << ": " << result.message);
-  REQUIRE(result.status == RetargetStatus::kCertified);
+  REQUIRE(result.status == Outcome::kCertified);
   test::check_outputs_finite(out);
   // With skeletons, every boundary loop ends at its place along its bone.
   CHECK(result.report.loop_offsets.empty() == options.inputs.source_skeleton.empty());
@@ -114,7 +114,7 @@ TEST_CASE(
   const ObjDocument avatar = read_obj(scene.paths.avatar);
   const double scene_size =
       (avatar.positions.colwise().maxCoeff() - avatar.positions.colwise().minCoeff()).maxCoeff();
-  const Outcome reference = retarget_transformed(scene, 1.0, Vector3d::Zero(), "reference");
+  const ScaledRun reference = retarget_transformed(scene, 1.0, Vector3d::Zero(), "reference");
 
   struct Case {
     const char* name;
@@ -124,7 +124,7 @@ TEST_CASE(
   for (const Case& c :
        {Case{"scale_1e-3", 1e-3, Vector3d::Zero()}, Case{"scale_1e3", 1e3, Vector3d::Zero()},
         Case{"shift_1e4", 1.0, Vector3d(1e4, -1e4, 1e4)}}) {
-    const Outcome outcome = retarget_transformed(scene, c.scale, c.shift, c.name);
+    const ScaledRun outcome = retarget_transformed(scene, c.scale, c.shift, c.name);
     REQUIRE(outcome.fitted.rows() == reference.fitted.rows());
     const auto agreement = [&](const MatrixX3d& a, const MatrixX3d& b) {
       return (a - b).rowwise().norm().maxCoeff() / scene_size;

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "extremes_support.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 
 namespace fs = std::filesystem;
 using namespace gr;
@@ -26,7 +26,7 @@ TEST_CASE(
   // One Newton step of up to 0.1 already lifts the avatar to a valid snap; the fit's one step is
   // not enough. Every accepted step was CCD-bounded, so the garment is intersection free: it is
   // written and certified, and the cap is reported on stderr and in the report.
-  CHECK(run.exit_code == kExitSuccess);
+  CHECK(run.exit_code == to_exit_code(Outcome::kCertified));
   CHECK_THAT(run.err,
              Catch::Contains("fit stopped before its tolerance: 1 steps without converging") &&
                  Catch::Contains("--max-newton-iterations"));
@@ -49,7 +49,7 @@ TEST_CASE("extremes: a garment 1e-12 from the avatar gives byte-identical files 
         test::synthetic_scene("determinism_" + std::to_string(run), test::cap_at_gap(1e-12));
     const RetargetResult result = test::run_and_check(options);
     INFO(result.message);
-    REQUIRE(result.status == RetargetStatus::kCertified);
+    REQUIRE(result.status == Outcome::kCertified);
     written[run] = test::read_text(result.garment_path);
   }
   CHECK_FALSE(written[0].empty());

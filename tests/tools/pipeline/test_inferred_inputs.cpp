@@ -15,7 +15,7 @@
 #include "shrink/shrink_oracles.hpp"
 #include "shrink/shrunk_avatar/shrink_certification.hpp"
 #include "shrink/shrunk_avatar/skeleton_shrink.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 
 using namespace gr;
 namespace fs = std::filesystem;
@@ -135,7 +135,7 @@ TEST_CASE("an inflation that fails from a shrink and from a thinner one is a sol
                                       "--out", out.string(), "--quiet"}),
                     "thinner_shrink_fails");
   CAPTURE(run.out, run.err);
-  CHECK(run.exit_code == gr::kExitSolverFailure);
+  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kSolverFailure));
   CHECK_THAT(run.out, Catch::Contains("inflation failed"));
   const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
   CHECK(report["shrink"]["thinned"] == true);

@@ -12,7 +12,7 @@
 #include "cli_runner.hpp"
 #include "core/io/obj_document.hpp"
 #include "extremes_support.hpp"
-#include "tools/cli/exit_codes.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/pierced_faces.hpp"
 
 namespace fs = std::filesystem;
@@ -143,7 +143,7 @@ TEST_CASE("A capped garment over a skeleton: its caps are opened, or it is refus
     const fs::path out = dir / "open";
     const test::CliRun run = retarget(out, {});
     CAPTURE(run.out, run.err);
-    REQUIRE(run.exit_code == kExitSuccess);
+    REQUIRE(run.exit_code == to_exit_code(Outcome::kCertified));
     const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
     const auto& pierced = report["pierced_faces"];
     CHECK(pierced["bones"] == nlohmann::json({"joint 0-joint 1", "joint 1-joint 2"}));
@@ -173,7 +173,7 @@ TEST_CASE("A capped garment over a skeleton: its caps are opened, or it is refus
     const fs::path out = dir / "refuse";
     const test::CliRun run = retarget(out, {"--pierced", "refuse"});
     CAPTURE(run.out, run.err);
-    CHECK(run.exit_code == kExitNoValidShrink);
+    CHECK(run.exit_code == to_exit_code(Outcome::kNoValidShrink));
     CHECK_THAT(run.out, Catch::Contains("bones pass through 2 garment faces") &&
                             Catch::Contains("joint 0-joint 1") &&
                             Catch::Contains("joint 1-joint 2"));
@@ -199,7 +199,7 @@ TEST_CASE("The puffer on the T-rex, a body far from the garment's, is certified 
        data("garments/puffer/no-fit.txt"), "--out", out.string(), "--quiet"},
       "trex_puffer");
   CAPTURE(run.out, run.err);
-  REQUIRE(run.exit_code == kExitSuccess);
+  REQUIRE(run.exit_code == to_exit_code(Outcome::kCertified));
   const auto report = nlohmann::json::parse(test::read_text(out / "report.json"));
   CHECK(report["shape"]["mean_edge_change"].get<double>() <= 0.30);
   CHECK(report["pierced_faces"]["opened"].empty());

@@ -48,7 +48,7 @@ TEST_CASE("skeleton-free families: certified, size and shape kept, converged in 
   const RetargetResult result = test::run_and_check(options);
   const RetargetReport& r = result.report;
   INFO(result.message);
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
   CHECK(r.certified);
   CHECK(r.shape.scale >= 0.9);
   CHECK(r.shape.scale <= 1.1);
@@ -70,10 +70,10 @@ TEST_CASE("skeleton-free: an erosion deeper than the distance band builds a full
   test::write_mesh_obj(dir / "avatar.obj", test::uv_sphere(32, 16));
   RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
                                                 (dir / "avatar.obj").string(), dir / "out");
-  options.overrides.voxel_size = 0.03;
+  options.overrides.set("voxel_size", 0.03);
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
-  CHECK(result.status == RetargetStatus::kCertified);
+  CHECK(result.status == Outcome::kCertified);
   CHECK(result.report.shrink_full_depth_grid);
   CHECK(result.report.shrink_depth > kDistanceBand);
 }
