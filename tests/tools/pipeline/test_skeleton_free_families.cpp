@@ -66,7 +66,7 @@ TEST_CASE("skeleton-free: an erosion deeper than the distance band builds a full
           "[pipeline][skeleton-free][shrink]") {
   // The sphere bulges 0.15 through a sleeve of radius 0.85: deeper than the band of 0.1.
   const std::filesystem::path dir = test::fresh_temp_dir("skeleton_free_deep");
-  test::write_mesh_obj(dir / "garment.obj", test::open_cylinder(24, 8, 0.85, -0.5, 0.5));
+  test::write_mesh_obj(dir / "garment.obj", open_cylinder(0.85, -0.5, 0.5, 8, 24));
   test::write_mesh_obj(dir / "avatar.obj", test::uv_sphere(32, 16));
   RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
                                                 (dir / "avatar.obj").string(), dir / "out");
