@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -11,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/mesh/primitives.hpp"
 #include "core/test_shapes.hpp"
@@ -18,18 +18,6 @@
 #include "tools/pipeline/retarget.hpp"
 
 namespace gr::test {
-
-/// Writes a bare OBJ of a triangle mesh (positions and faces only).
-inline void write_mesh_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {
-  std::ofstream out(path);
-  out.precision(17);
-  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
-    out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2)
-        << '\n';
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' '
-        << mesh.faces(f, 2) + 1 << '\n';
-}
 
 /// The faces of `mesh` whose three corners satisfy `keep`, with unused vertices dropped.
 template <typename Keep>
@@ -213,8 +201,8 @@ inline TriangleMesh cap_inside() {
 inline RetargetOptions synthetic_scene(const std::string& name, const TriangleMesh& garment,
                                        const TriangleMesh& avatar = sphere_avatar()) {
   const std::filesystem::path dir = fresh_temp_dir("extremes_" + name);
-  write_mesh_obj(dir / "garment.obj", garment);
-  write_mesh_obj(dir / "avatar.obj", avatar);
+  write_obj((dir / "garment.obj").string(), garment);
+  write_obj((dir / "avatar.obj").string(), avatar);
   RetargetOptions options =
       quiet_options((dir / "garment.obj").string(), (dir / "avatar.obj").string(), dir / "out");
   // The spheres are smooth at this resolution; a finer grid only costs time.

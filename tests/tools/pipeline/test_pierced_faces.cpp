@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/mesh/primitives.hpp"
 #include "extremes_support.hpp"
@@ -104,9 +105,9 @@ TEST_CASE("A capped garment over a skeleton: its caps are opened, or it is refus
   body.vertices.col(0) *= 0.5;
   body.vertices.col(2) *= 0.5;
   body.vertices.col(1) *= 2.5;
-  test::write_mesh_obj(dir / "body.obj", body);
+  write_obj((dir / "body.obj").string(), body);
   const TriangleMesh box = closed_box(8);
-  test::write_mesh_obj(dir / "box.obj", box);
+  write_obj((dir / "box.obj").string(), box);
   std::ofstream(dir / "skeleton.obj")
       << "v 0.1 -2.4 0.2\nv 0.1 0 0.2\nv 0.1 2.4 0.2\nl 1 2\nl 2 3\n";
   const auto retarget = [&](const fs::path& out, const std::vector<std::string>& extra) {
