@@ -1,7 +1,6 @@
 #pragma once
 
 #include <initializer_list>
-#include <string>
 
 #include "core/common/types.hpp"
 
@@ -69,8 +68,5 @@ inline TriangleMesh extruded_strip(std::initializer_list<Vector2d> polyline) {
   }
   return m;
 }
-
-/// The text of an OBJ file holding `mesh` (positions in full precision).
-std::string obj_text(const TriangleMesh& mesh);
 
 }  // namespace gr::test

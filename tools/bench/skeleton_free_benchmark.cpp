@@ -12,23 +12,13 @@
 #include <CLI/CLI.hpp>
 
 #include "core/common/stopwatch.hpp"
-#include "core/io/obj_document.hpp"
+#include "core/io/mesh_file.hpp"
 #include "tools/pipeline/retarget.hpp"
 #include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-void write_obj(const fs::path& path, const gr::TriangleMesh& mesh) {
-  gr::ObjDocument document;
-  document.positions = mesh.vertices;
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    document.faces.push_back({gr::ObjCorner{mesh.faces(f, 0), -1, -1},
-                              gr::ObjCorner{mesh.faces(f, 1), -1, -1},
-                              gr::ObjCorner{mesh.faces(f, 2), -1, -1}});
-  gr::write_obj(path.string(), document, mesh.vertices);
-}
 
 /// The variants of every family: three resolutions, an offset, and the scene turned,
 /// scaled and moved (other axes, units and origin).
@@ -66,8 +56,8 @@ int main(int argc, char** argv) {
           fs::path(out) / fmt::format("{}_r{}_o{:g}_t{:g}", gr::to_string(family),
                                       variant.resolution, variant.offset, variant.turn_degrees);
       fs::create_directories(dir);
-      write_obj(dir / "garment_in.obj", scene.garment);
-      write_obj(dir / "avatar.obj", scene.avatar);
+      gr::write_obj((dir / "garment_in.obj").string(), scene.garment);
+      gr::write_obj((dir / "avatar.obj").string(), scene.avatar);
       gr::RetargetOptions options;
       options.inputs.garment = (dir / "garment_in.obj").string();
       options.inputs.avatar = (dir / "avatar.obj").string();

@@ -9,12 +9,11 @@
 #include <filesystem>
 #include <vector>
 
-#include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
 #include "core/common/stopwatch.hpp"
-#include "core/io/atomic_file.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/mesh/primitives.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/scene.hpp"
@@ -54,17 +53,6 @@ gr::TriangleMesh combined(const gr::TriangleMesh& a, const gr::TriangleMesh& b) 
   m.faces.resize(a.faces.rows() + b.faces.rows(), 3);
   m.faces << a.faces, (b.faces.array() + static_cast<int>(a.vertices.rows())).matrix();
   return m;
-}
-
-void write_mesh(const std::string& path, const gr::TriangleMesh& mesh) {
-  gr::write_file_atomically(path, [&](std::ostream& out) {
-    for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
-      out << fmt::format("v {:.17g} {:.17g} {:.17g}\n", mesh.vertices(v, 0), mesh.vertices(v, 1),
-                         mesh.vertices(v, 2));
-    for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-      out << fmt::format("f {} {} {}\n", mesh.faces(f, 0) + 1, mesh.faces(f, 1) + 1,
-                         mesh.faces(f, 2) + 1);
-  });
 }
 
 /// A latitude–longitude sphere: `m` segments around, `n` bands from pole to pole
@@ -115,7 +103,7 @@ int main(int argc, char** argv) {
 
   std::filesystem::create_directories(work);
   const std::string avatar_path = work + "/avatar.obj";
-  write_mesh(avatar_path, avatar);
+  gr::write_obj(avatar_path, avatar);
   struct Case {
     const char* name;
     std::string garment;
@@ -125,12 +113,12 @@ int main(int argc, char** argv) {
       {"placed (intersecting)", work + "/garment_placed.obj", avatar_path},
       {"moved clear", work + "/garment_clear.obj", avatar_path},
       {"hugging spheres", work + "/sphere_garment.obj", work + "/sphere_avatar.obj"}};
-  write_mesh(cases[0].garment, garment);
-  write_mesh(cases[1].garment, clear);
+  gr::write_obj(cases[0].garment, garment);
+  gr::write_obj(cases[1].garment, clear);
   // Worst case for the clearance: a 9,940-face sphere 0.002 (dhat) outside a 20,000-face
   // one, close everywhere.
-  write_mesh(cases[2].garment, sphere(1.002, 71, 71));
-  write_mesh(cases[2].avatar, sphere(1.0, 100, 101));
+  gr::write_obj(cases[2].garment, sphere(1.002, 71, 71));
+  gr::write_obj(cases[2].avatar, sphere(1.0, 100, 101));
 
   gr::ValidationOptions options;
   options.threshold = threshold;

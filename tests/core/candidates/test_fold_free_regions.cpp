@@ -22,20 +22,10 @@ gr::GarmentRegions regions_of(const gr::TriangleMesh& mesh, int max_leaf_faces) 
 /// A flat-ish strip between radii 1 and 1.5 around the z axis, from angle 0 to `end`, rising
 /// by `pitch` per radian: normals near +z. Past one turn it lies over itself in projection.
 gr::TriangleMesh ring_strip(double end, int segments, double pitch) {
-  gr::TriangleMesh mesh;
-  mesh.vertices.resize(2 * (segments + 1), 3);
-  for (int k = 0; k <= segments; ++k) {
-    const double angle = end * k / segments;
-    mesh.vertices.row(2 * k) << std::cos(angle), std::sin(angle), pitch * angle;
-    mesh.vertices.row(2 * k + 1) << 1.5 * std::cos(angle), 1.5 * std::sin(angle), pitch * angle;
-  }
-  mesh.faces.resize(2 * segments, 3);
-  for (int k = 0; k < segments; ++k) {
-    const int in = 2 * k, out = in + 1, next_in = in + 2, next_out = in + 3;
-    mesh.faces.row(2 * k) << in, out, next_out;
-    mesh.faces.row(2 * k + 1) << in, next_out, next_in;
-  }
-  return mesh;
+  return gr::quad_grid(segments, 1, false, [&](int k, int side) {
+    const double angle = end * k / segments, radius = side == 0 ? 1.0 : 1.5;
+    return gr::Vector3d(radius * std::cos(angle), radius * std::sin(angle), pitch * angle);
+  });
 }
 
 const Region& only_root(const gr::GarmentRegions& regions) {

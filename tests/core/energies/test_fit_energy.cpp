@@ -36,7 +36,7 @@ TEST_CASE("fit energy: gradient and Hessian match finite differences",
   const int samples = GENERATE(1, 3, 6);
   CAPTURE(samples);
   // A sphere patch partly outside a unit sphere: some points with phi > 0, some inside.
-  const TriangleMesh rest = test::icosphere(1, 1.05);
+  const TriangleMesh rest = icosphere(1, 1.05);
   const test::SphereField field(Vector3d(0.1, 0.0, 0.0), 1.0);
   const DofLayout layout{static_cast<int>(rest.vertices.rows())};
   const FitEnergy energy(rest, {}, field, samples, layout);
@@ -53,7 +53,7 @@ TEST_CASE("fit energy with ease offsets: gradient and Hessian match finite diffe
   const int samples = GENERATE(1, 3, 6);
   CAPTURE(samples);
   // Points both nearer and farther than their targets, and some targets of 0.
-  const TriangleMesh rest = test::icosphere(1, 1.05);
+  const TriangleMesh rest = icosphere(1, 1.05);
   const test::SphereField field(Vector3d(0.1, 0.0, 0.0), 1.0);
   const DofLayout layout{static_cast<int>(rest.vertices.rows())};
   std::vector<double> offsets(static_cast<std::size_t>(rest.vertices.rows()));
@@ -140,7 +140,7 @@ class CountingField : public DistanceField {
 
 TEST_CASE("fit energy: one sampling per iterate serves gradient, Hessian and value",
           "[energies][fit]") {
-  const TriangleMesh rest = test::icosphere(1, 1.05);
+  const TriangleMesh rest = icosphere(1, 1.05);
   const test::SphereField sphere(Vector3d(0.1, 0.0, 0.0), 1.0);
   const CountingField field(sphere);
   const DofLayout layout{static_cast<int>(rest.vertices.rows())};

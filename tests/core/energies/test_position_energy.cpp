@@ -68,7 +68,7 @@ TEST_CASE("position energy: bone parameter derivatives match finite differences"
 TEST_CASE(
     "position energy: zero at rest, assembled derivatives in (t, Vg) match finite differences",
     "[energies][position][grad][hess]") {
-  const TriangleMesh cylinder = test::open_cylinder(8, 3, 0.3, -0.5, 0.5);
+  const TriangleMesh cylinder = open_cylinder(0.3, -0.5, 0.5, 3, 8);
   const int n = static_cast<int>(cylinder.vertices.rows());
   const auto loops = boundary_loops(cylinder.faces);
   REQUIRE(loops.size() == 2);
@@ -113,11 +113,11 @@ TEST_CASE("boundary loops of a grid and a cylinder", "[mesh][loops]") {
   const auto grid_loops = boundary_loops(test::curved_grid(4).faces);
   REQUIRE(grid_loops.size() == 1);
   CHECK(grid_loops[0].size() == 12);
-  const auto cylinder_loops = boundary_loops(test::open_cylinder(10, 4, 1, 0, 1).faces);
+  const auto cylinder_loops = boundary_loops(open_cylinder(1.0, 0.0, 1.0, 4, 10).faces);
   REQUIRE(cylinder_loops.size() == 2);
   CHECK(cylinder_loops[0].size() == 10);
   CHECK(cylinder_loops[1].size() == 10);
-  CHECK(boundary_loops(test::icosphere(1).faces).empty());
+  CHECK(boundary_loops(icosphere(1).faces).empty());
 }
 
 TEST_CASE("leg joints are the two chains hanging from the branching joint", "[skeleton]") {
@@ -135,7 +135,7 @@ TEST_CASE("leg joints are the two chains hanging from the branching joint", "[sk
 TEST_CASE("loop bones: the closest bone within 60 degrees of the loop normal", "[skeleton]") {
   // A vertical cylinder (loops with normals along z) around a vertical bone; a horizontal
   // bone passes closer to the lower loop's centre but is perpendicular to it.
-  const TriangleMesh cylinder = test::open_cylinder(8, 2, 0.3, 0.0, 1.0);
+  const TriangleMesh cylinder = open_cylinder(0.3, 0.0, 1.0, 2, 8);
   MatrixX3d joints(4, 3);
   joints << 0.05, 0, -1, 0.05, 0, 2, -1, 0, 0.01, 1, 0, 0.01;
   MatrixX2i bones(2, 2);

@@ -30,7 +30,7 @@ StretchCase stretch_case(int which) {
       return {"compressed grid", grid, V};
     }
     case 1: {  // a cylinder stretched to 1.4 times along its axis
-      TriangleMesh cylinder = test::open_cylinder(6, 3, 0.3, -0.5, 0.5);
+      TriangleMesh cylinder = open_cylinder(0.3, -0.5, 0.5, 3, 6);
       MatrixX3d V = cylinder.vertices;
       V.col(2) *= 1.4;
       V += 0.02 * MatrixX3d::Random(V.rows(), 3);
@@ -109,7 +109,7 @@ TEST_CASE("stretch energy: duplicate vertices give no element, a collapsed edge 
 TEST_CASE("anchor energy: zero at rest, derivatives match finite differences",
           "[energies][anchor][grad][hess]") {
   const bool t_free = GENERATE(false, true);
-  const TriangleMesh cylinder = test::open_cylinder(8, 3, 0.3, -0.5, 0.5);
+  const TriangleMesh cylinder = open_cylinder(0.3, -0.5, 0.5, 3, 8);
   const int n = static_cast<int>(cylinder.vertices.rows());
   const std::vector<int> loop_vertices = boundary_loop_vertices(cylinder.faces);
   CHECK(loop_vertices.size() == 16);

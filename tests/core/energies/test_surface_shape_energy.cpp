@@ -86,7 +86,7 @@ TEST_CASE("surface shape energy: assembled gradient and Hessian match finite dif
 
 TEST_CASE("surface shape energy: zero with zero gradient at rest and under rigid motions",
           "[energies][surface][invariance]") {
-  const TriangleMesh rest = GENERATE(test::curved_grid(5), test::icosphere(1, 0.7));
+  const TriangleMesh rest = GENERATE(test::curved_grid(5), icosphere(1, 0.7));
   const DofLayout layout{static_cast<int>(rest.vertices.rows())};
   const SurfaceShapeEnergy energy(rest, layout);
   REQUIRE(!energy.elements().empty());

@@ -81,9 +81,9 @@ TEST_CASE("avatar inflation: a round that leaves t < 0 (eta < 0) resets and reco
   // relieves the barrier by shrinking the avatar further (t < 0, so |1 - t| > 1 and
   // eta < 0) rather than by stretching the garment.
   GarmentScene scene;
-  scene.avatar = test::icosphere(1, 1.0);
+  scene.avatar = icosphere(1, 1.0);
   scene.shrunk_avatar = 0.899 * scene.avatar.vertices;
-  scene.garment = test::icosphere(1, 0.9);
+  scene.garment = icosphere(1, 0.9);
   RetargetParameters parameters;
   parameters.w_surf = 1e6;
   std::vector<InflationRound> rounds;
@@ -136,14 +136,14 @@ TEST_CASE("avatar inflation: a garment pinched between two growing parts stops a
   // cannot reach 1.
   GarmentScene scene = test::inflating_sphere_scene(1, 2);
   const TriangleMesh inner = scene.avatar;
-  TriangleMesh outer = test::icosphere(1, 1.0);
+  TriangleMesh outer = icosphere(1, 1.0);
   const Vector3d outer_centre(1.6, 0.0, 0.0);
   outer.vertices.rowwise() += outer_centre.transpose();
   scene.avatar.vertices.resize(inner.vertices.rows() + outer.vertices.rows(), 3);
   scene.avatar.vertices << inner.vertices, outer.vertices;
   scene.avatar.faces.resize(inner.faces.rows() + outer.faces.rows(), 3);
   scene.avatar.faces << inner.faces, (outer.faces.array() + inner.vertices.rows()).matrix();
-  MatrixX3d outer_shrunk = 0.3 * test::icosphere(1, 1.0).vertices;
+  MatrixX3d outer_shrunk = 0.3 * icosphere(1, 1.0).vertices;
   outer_shrunk.rowwise() += outer_centre.transpose();
   scene.shrunk_avatar.resize(scene.avatar.vertices.rows(), 3);
   scene.shrunk_avatar << 0.5 * inner.vertices, outer_shrunk;

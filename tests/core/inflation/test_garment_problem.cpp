@@ -15,9 +15,9 @@ namespace {
 /// outside A(0.5) (radius 0.95): every garment face is within dhat of the avatar at t = 0.5.
 GarmentScene close_contact_scene() {
   GarmentScene scene;
-  scene.avatar = test::icosphere(1, 1.0);
+  scene.avatar = icosphere(1, 1.0);
   scene.shrunk_avatar = 0.9 * scene.avatar.vertices;
-  scene.garment = test::icosphere(1, 0.9512);
+  scene.garment = icosphere(1, 0.9512);
   return scene;
 }
 

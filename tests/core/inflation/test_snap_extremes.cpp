@@ -14,7 +14,7 @@ namespace {
 /// garment edge parallel to an avatar edge).
 GarmentScene blown_up_scene(double gap) {
   GarmentScene scene;
-  scene.avatar = test::icosphere(1, 1.0);
+  scene.avatar = icosphere(1, 1.0);
   scene.shrunk_avatar = 0.5 * scene.avatar.vertices;
   scene.garment = scene.avatar;
   scene.garment.vertices *= 1.0 + gap;

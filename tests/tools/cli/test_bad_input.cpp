@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
 #include "test_support.hpp"
 #include "tools/pipeline/outcome.hpp"
@@ -47,7 +48,7 @@ const fs::path& bad_input_dir() {
     write_text(dir / "a_file", "not a folder\n");
 
     // A small scene: a UV sphere avatar and flat patches (4×4 squares of 1/4) around it.
-    gr::test::write_mesh_obj(dir / "sphere.obj", gr::test::uv_sphere(16, 9));
+    gr::write_obj((dir / "sphere.obj").string(), gr::test::uv_sphere(16, 9));
     const gr::TriangleMesh patch = gr::test::flat_patch(4, 0.25, 0.9375);
     std::string quads;
     for (Eigen::Index v = 0; v < patch.vertices.rows(); ++v)
@@ -67,7 +68,7 @@ const fs::path& bad_input_dir() {
       }
     write_text(dir / "quads.obj", quads);
     // A patch through the sphere's centre: no erosion frees it.
-    gr::test::write_mesh_obj(dir / "through_centre.obj", gr::test::flat_patch(4, 0.75, 0.0));
+    gr::write_obj((dir / "through_centre.obj").string(), gr::test::flat_patch(4, 0.75, 0.0));
     // Two patches crossing each other above the sphere: the garment meets itself.
     gr::TriangleMesh crossing = gr::test::flat_patch(2, 0.5, 1.5);
     gr::TriangleMesh upright = crossing;
@@ -78,7 +79,7 @@ const fs::path& bad_input_dir() {
     crossing.vertices.bottomRows(9) = upright.vertices;
     crossing.faces.conservativeResize(16, 3);
     crossing.faces.bottomRows(8) = upright.faces.array() + 9;
-    gr::test::write_mesh_obj(dir / "self_crossing.obj", crossing);
+    gr::write_obj((dir / "self_crossing.obj").string(), crossing);
     return dir;
   }();
   return dir;
@@ -220,7 +221,7 @@ TEST_CASE("A non-manifold garment is split for the solver and welded back", "[cl
   patch.faces.conservativeResize(f + 2, 3);
   patch.faces.row(f) << a, b, static_cast<int>(n);
   patch.faces.row(f + 1) << b, a, static_cast<int>(n + 1);
-  gr::test::write_mesh_obj(dir / "fins.obj", patch);
+  gr::write_obj((dir / "fins.obj").string(), patch);
   const fs::path out = dir / "fins_out";
   const gr::test::CliRun run =
       gr::test::run_cli({"retarget", "--garment", (dir / "fins.obj").string(), "--avatar",

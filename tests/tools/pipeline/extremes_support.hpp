@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -11,24 +10,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
+#include "core/mesh/primitives.hpp"
 #include "core/test_shapes.hpp"
 #include "test_support.hpp"
 #include "tools/pipeline/retarget.hpp"
 
 namespace gr::test {
-
-/// Writes a bare OBJ of a triangle mesh (positions and faces only).
-inline void write_mesh_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {
-  std::ofstream out(path);
-  out.precision(17);
-  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
-    out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2)
-        << '\n';
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' '
-        << mesh.faces(f, 2) + 1 << '\n';
-}
 
 /// The faces of `mesh` whose three corners satisfy `keep`, with unused vertices dropped.
 template <typename Keep>
@@ -142,53 +131,27 @@ inline TriangleMesh octahedron() {
 /// A UV sphere of radius 1 about the origin: poles on the z axis, `around` (a multiple
 /// of 4) vertices per ring, `rings` rings between the poles. Its box is exactly
 /// [-1, 1]³ (cos and sin are exact at quarter turns), so the normalization is the identity.
+/// The vertices of gr::uv_sphere (the same numbers and faces) in the order the scenes'
+/// face and vertex ids refer to: north pole, rings, south pole last.
 inline TriangleMesh uv_sphere(int around, int rings) {
+  const TriangleMesh sphere = gr::uv_sphere(1.0, Vector3d::Zero(), rings + 1, around);
+  const auto n = sphere.vertices.rows();
   TriangleMesh mesh;
-  const int n = around * rings + 2;
   mesh.vertices.resize(n, 3);
-  mesh.vertices.row(0) << 0.0, 0.0, 1.0;
-  mesh.vertices.row(n - 1) << 0.0, 0.0, -1.0;
-  for (int r = 0; r < rings; ++r) {
-    const double polar = M_PI * (r + 1) / (rings + 1);
-    for (int i = 0; i < around; ++i) {
-      const double azimuth = 2.0 * M_PI * i / around;
-      mesh.vertices.row(1 + r * around + i) << std::sin(polar) * std::cos(azimuth),
-          std::sin(polar) * std::sin(azimuth), std::cos(polar);
-    }
-  }
-  std::vector<Eigen::Vector3i> faces;
-  const auto ring = [&](int r, int i) { return 1 + r * around + (i % around); };
-  for (int i = 0; i < around; ++i) {
-    faces.emplace_back(0, ring(0, i), ring(0, i + 1));
-    faces.emplace_back(n - 1, ring(rings - 1, i + 1), ring(rings - 1, i));
-    for (int r = 0; r + 1 < rings; ++r) {
-      faces.emplace_back(ring(r, i), ring(r + 1, i), ring(r + 1, i + 1));
-      faces.emplace_back(ring(r, i), ring(r + 1, i + 1), ring(r, i + 1));
-    }
-  }
-  mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    mesh.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  mesh.vertices.row(0) = sphere.vertices.row(0);
+  mesh.vertices.middleRows(1, n - 2) = sphere.vertices.bottomRows(n - 2);
+  mesh.vertices.row(n - 1) = sphere.vertices.row(1);
+  const int south = static_cast<int>(n - 1);
+  mesh.faces = sphere.faces.unaryExpr([&](int v) { return v == 1 ? south : v == 0 ? 0 : v - 1; });
   return mesh;
 }
 
 /// An n×n grid of squares of side h in the plane z = height, centred on the z axis; each
 /// square split along its diagonal. With h and height dyadic every coordinate is exact.
 inline TriangleMesh flat_patch(int n, double h, double height) {
-  TriangleMesh mesh;
-  mesh.vertices.resize((n + 1) * (n + 1), 3);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i)
-      mesh.vertices.row(j * (n + 1) + i) << (i - 0.5 * n) * h, (j - 0.5 * n) * h, height;
-  mesh.faces.resize(2 * n * n, 3);
-  int f = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      mesh.faces.row(f++) << a, b, d;
-      mesh.faces.row(f++) << a, d, c;
-    }
-  return mesh;
+  return quad_grid(n, n, false, [&](int j, int i) {
+    return Vector3d((i - 0.5 * n) * h, (j - 0.5 * n) * h, height);
+  });
 }
 
 /// Splits face `face` (a, b, c) of `mesh` at a new vertex m = (a + b) / 2 + lift · (c − (a + b) /
@@ -238,8 +201,8 @@ inline TriangleMesh cap_inside() {
 inline RetargetOptions synthetic_scene(const std::string& name, const TriangleMesh& garment,
                                        const TriangleMesh& avatar = sphere_avatar()) {
   const std::filesystem::path dir = fresh_temp_dir("extremes_" + name);
-  write_mesh_obj(dir / "garment.obj", garment);
-  write_mesh_obj(dir / "avatar.obj", avatar);
+  write_obj((dir / "garment.obj").string(), garment);
+  write_obj((dir / "avatar.obj").string(), avatar);
   RetargetOptions options =
       quiet_options((dir / "garment.obj").string(), (dir / "avatar.obj").string(), dir / "out");
   // The spheres are smooth at this resolution; a finer grid only costs time.

@@ -35,8 +35,8 @@ TriangleMesh cut_above(const TriangleMesh& mesh, double z) {
 }  // namespace
 
 TEST_CASE("Source ease: the distance to the body, and over a cut the neighbours'", "[ease]") {
-  const TriangleMesh garment = test::icosphere(2, 1.2);
-  const TriangleMesh body = test::icosphere(3, 1.0);
+  const TriangleMesh garment = icosphere(2, 1.2);
+  const TriangleMesh body = icosphere(3, 1.0);
   const SourceEase whole = measure_source_ease(garment, body);
   CHECK(whole.filled == 0);
   for (const double d : whole.distance) CHECK(d == Approx(0.2).margin(0.01));
@@ -50,8 +50,8 @@ TEST_CASE("Source ease: the distance to the body, and over a cut the neighbours'
 }
 
 TEST_CASE("Ease targets scale the source ease as the garment was scaled", "[ease]") {
-  const TriangleMesh rest = test::icosphere(2, 1.2);
-  const SourceEase source = measure_source_ease(rest, test::icosphere(3, 1.0));
+  const TriangleMesh rest = icosphere(2, 1.2);
+  const SourceEase source = measure_source_ease(rest, icosphere(3, 1.0));
   const MatrixX3d inflated = 1.5 * rest.vertices;
   const EaseTargets targets = ease_targets(rest, inflated, source, 1.0);
   CHECK(targets.median_scale == Approx(1.5).epsilon(1e-9));
@@ -66,8 +66,8 @@ TEST_CASE("Ease targets scale the source ease as the garment was scaled", "[ease
 }
 
 TEST_CASE("Ease kept: a garment and body scaled together keep a ratio of 1", "[ease]") {
-  const TriangleMesh rest = test::icosphere(2, 1.2);
-  const TriangleMesh body = test::icosphere(3, 1.0);
+  const TriangleMesh rest = icosphere(2, 1.2);
+  const TriangleMesh body = icosphere(3, 1.0);
   const SourceEase source = measure_source_ease(rest, body);
   const std::vector<bool> all_fit(static_cast<std::size_t>(rest.faces.rows()), true);
   const TriangleMesh avatar{2.0 * body.vertices, body.faces};

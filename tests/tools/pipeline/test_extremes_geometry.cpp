@@ -1,12 +1,12 @@
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
 #include "extremes_support.hpp"
 
@@ -113,21 +113,16 @@ TEST_CASE("extremes: duplicate garment vertices (a seam and unreferenced copies)
   // Every vertex written twice; faces right of x = 0 use the second copies, so the seam
   // on x = 0 is made of bit-identical pairs and half of all vertices are unreferenced.
   const auto n = patch.vertices.rows();
-  {
-    std::ofstream out(options.inputs.garment);
-    out.precision(17);
-    for (int copy = 0; copy < 2; ++copy)
-      for (Eigen::Index v = 0; v < n; ++v)
-        out << "v " << patch.vertices(v, 0) << ' ' << patch.vertices(v, 1) << ' '
-            << patch.vertices(v, 2) << '\n';
-    for (Eigen::Index f = 0; f < patch.faces.rows(); ++f) {
-      double x = 0.0;
-      for (int k = 0; k < 3; ++k) x += patch.vertices(patch.faces(f, k), 0);
-      const Eigen::Index offset = x > 0.0 ? n : 0;
-      out << "f " << patch.faces(f, 0) + 1 + offset << ' ' << patch.faces(f, 1) + 1 + offset << ' '
-          << patch.faces(f, 2) + 1 + offset << '\n';
-    }
+  TriangleMesh doubled;
+  doubled.vertices.resize(2 * n, 3);
+  doubled.vertices << patch.vertices, patch.vertices;
+  doubled.faces = patch.faces;
+  for (Eigen::Index f = 0; f < patch.faces.rows(); ++f) {
+    double x = 0.0;
+    for (int k = 0; k < 3; ++k) x += patch.vertices(patch.faces(f, k), 0);
+    if (x > 0.0) doubled.faces.row(f).array() += static_cast<int>(n);
   }
+  write_obj(options.inputs.garment, doubled);
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
   REQUIRE(result.status == Outcome::kCertified);

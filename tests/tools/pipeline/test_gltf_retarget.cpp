@@ -8,6 +8,7 @@
 #include "cli_runner.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/io/gltf_fixture.hpp"
+#include "core/io/mesh_file.hpp"
 #include "extremes_support.hpp"
 #include "gltf_scene.hpp"
 #include "test_support.hpp"
@@ -271,7 +272,7 @@ TEST_CASE("An OBJ garment written as GLB is certified, validated and gets its re
       obj << '\n';
     }
   }
-  test::write_mesh_obj(dir / "avatar.obj", scene.avatar);
+  write_obj((dir / "avatar.obj").string(), scene.avatar);
   const test::CliRun run =
       test::run_cli({"retarget", "--garment", (dir / "garment.obj").string(), "--avatar",
                      (dir / "avatar.obj").string(), "--out", (dir / "run").string(), "--quality",

@@ -20,24 +20,14 @@ namespace {
 /// An open tube around the z axis, rings from z = 1 down to z = -2: radius 1.05 down to
 /// z = 0 (snug on a unit-radius body), then flaring out to 2 at the bottom.
 TriangleMesh flared_tube(int rings = 31, int segments = 32) {
-  TriangleMesh tube;
-  tube.vertices.resize(rings * segments, 3);
-  for (int r = 0; r < rings; ++r) {
+  TriangleMesh tube = quad_grid(rings - 1, segments, true, [&](int r, int s) {
     const double z = 1.0 - 3.0 * r / (rings - 1);
     const double radius = z >= 0.0 ? 1.05 : 1.05 - 0.95 * z / 2.0;
-    for (int s = 0; s < segments; ++s) {
-      const double angle = 2.0 * M_PI * s / segments;
-      tube.vertices.row(r * segments + s) << radius * std::cos(angle), radius * std::sin(angle), z;
-    }
-  }
-  tube.faces.resize(2 * (rings - 1) * segments, 3);
-  for (int r = 0; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
-      const int f = 2 * (r * segments + s);
-      tube.faces.row(f) << a, b + segments, b;
-      tube.faces.row(f + 1) << a, a + segments, b + segments;
-    }
+    const double angle = 2.0 * M_PI * s / segments;
+    return Vector3d(radius * std::cos(angle), radius * std::sin(angle), z);
+  });
+  // The rings run down the axis: turn the faces so the normals point out.
+  tube.faces.col(1).swap(tube.faces.col(2));
   return tube;
 }
 

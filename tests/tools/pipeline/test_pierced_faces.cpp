@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
+#include "core/mesh/primitives.hpp"
 #include "extremes_support.hpp"
 #include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/pierced_faces.hpp"
@@ -19,18 +21,6 @@ namespace fs = std::filesystem;
 using namespace gr;
 
 namespace {
-
-/// A closed cube of side 2 around the origin (12 faces, outward).
-TriangleMesh closed_cube() {
-  TriangleMesh cube;
-  cube.vertices.resize(8, 3);
-  for (int i = 0; i < 8; ++i)
-    cube.vertices.row(i) << (i & 1 ? 1 : -1), (i & 2 ? 1 : -1), (i & 4 ? 1 : -1);
-  cube.faces.resize(12, 3);
-  cube.faces << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2,
-      4, 6, 1, 3, 5, 3, 7, 5;
-  return cube;
-}
 
 /// A closed box of side 2 around the origin, each side an n×n grid of quads (outward).
 TriangleMesh closed_box(int n) {
@@ -89,7 +79,7 @@ Skeleton vertical_bone() {
 }  // namespace
 
 TEST_CASE("Bones through a closed shell name its pierced faces", "[pierced]") {
-  const TriangleMesh cube = closed_cube();
+  const TriangleMesh cube = box(Vector3d::Ones());  // side 2, 12 faces, outward
   const Skeleton bone = vertical_bone();
   const std::vector<FacePair> pierced = faces_pierced_by_bones(cube, bone);
   REQUIRE(pierced.size() == 2);  // one face of the bottom, one of the top
@@ -115,9 +105,9 @@ TEST_CASE("A capped garment over a skeleton: its caps are opened, or it is refus
   body.vertices.col(0) *= 0.5;
   body.vertices.col(2) *= 0.5;
   body.vertices.col(1) *= 2.5;
-  test::write_mesh_obj(dir / "body.obj", body);
+  write_obj((dir / "body.obj").string(), body);
   const TriangleMesh box = closed_box(8);
-  test::write_mesh_obj(dir / "box.obj", box);
+  write_obj((dir / "box.obj").string(), box);
   std::ofstream(dir / "skeleton.obj")
       << "v 0.1 -2.4 0.2\nv 0.1 0 0.2\nv 0.1 2.4 0.2\nl 1 2\nl 2 3\n";
   const auto retarget = [&](const fs::path& out, const std::vector<std::string>& extra) {

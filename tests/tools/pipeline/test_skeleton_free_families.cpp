@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/io/mesh_file.hpp"
 #include "extremes_support.hpp"
 #include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 
@@ -40,8 +41,8 @@ TEST_CASE("skeleton-free families: certified, size and shape kept, converged in 
   const SkeletonFreeScene scene = make_skeleton_free_scene(c.family, c.variant);
   INFO(scene.name);
   const std::filesystem::path dir = test::fresh_temp_dir("skeleton_free");
-  test::write_mesh_obj(dir / "garment.obj", scene.garment);
-  test::write_mesh_obj(dir / "avatar.obj", scene.avatar);
+  write_obj((dir / "garment.obj").string(), scene.garment);
+  write_obj((dir / "avatar.obj").string(), scene.avatar);
   RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
                                                 (dir / "avatar.obj").string(), dir / "out");
   options.quality = Quality::kBalanced;
@@ -66,8 +67,8 @@ TEST_CASE("skeleton-free: an erosion deeper than the distance band builds a full
           "[pipeline][skeleton-free][shrink]") {
   // The sphere bulges 0.15 through a sleeve of radius 0.85: deeper than the band of 0.1.
   const std::filesystem::path dir = test::fresh_temp_dir("skeleton_free_deep");
-  test::write_mesh_obj(dir / "garment.obj", test::open_cylinder(24, 8, 0.85, -0.5, 0.5));
-  test::write_mesh_obj(dir / "avatar.obj", test::uv_sphere(32, 16));
+  write_obj((dir / "garment.obj").string(), open_cylinder(0.85, -0.5, 0.5, 8, 24));
+  write_obj((dir / "avatar.obj").string(), test::uv_sphere(32, 16));
   RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
                                                 (dir / "avatar.obj").string(), dir / "out");
   options.overrides.set("voxel_size", 0.03);

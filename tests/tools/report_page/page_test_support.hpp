@@ -91,8 +91,8 @@ inline ReportPageData small_page_scene() {
   data.avatar.vertices.col(0) *= 0.3;
   data.avatar.vertices.col(1) *= 0.25;
   const int around = 48, rings = 5;
-  const TriangleMesh inside = open_cylinder(around, rings, 0.22, -0.15, 0.15);
-  const TriangleMesh outside = open_cylinder(around, rings, 0.34, -0.15, 0.15);
+  const TriangleMesh inside = open_cylinder(0.22, -0.15, 0.15, rings, around);
+  const TriangleMesh outside = open_cylinder(0.34, -0.15, 0.15, rings, around);
   PageGarment garment;
   garment.name = "skirt";
   garment.faces = inside.faces;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/errors.hpp"
+#include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
 #include "test_support.hpp"
 #include "validate/certify/certificate.hpp"
@@ -22,6 +23,11 @@ std::string write_text(const std::filesystem::path& path, const std::string& tex
   return path.string();
 }
 
+std::string write_mesh(const std::filesystem::path& path, const gr::TriangleMesh& mesh) {
+  gr::write_obj(path.string(), mesh);
+  return path.string();
+}
+
 nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);
@@ -34,10 +40,9 @@ const gr::TriangleMesh kAvatar =
 
 TEST_CASE("certificate of a clean garment, computed from the files", "[validate][certificate]") {
   const auto dir = gr::test::fresh_temp_dir("certificate_clean");
-  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   const std::string garment =
-      write_text(dir / "garment.obj",
-                 gr::test::obj_text(triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5})));
+      write_mesh(dir / "garment.obj", triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5}));
   const nlohmann::json extra = {{"parameters", {{"dhat", 0.002}}},
                                 {"input_sha256", {{"garment", "abc"}}}};
   gr::ValidationOptions options;
@@ -63,7 +68,7 @@ TEST_CASE("certificate of a clean garment, computed from the files", "[validate]
 
 TEST_CASE("certification reads the file as written, not a welded mesh", "[validate][certificate]") {
   const auto dir = gr::test::fresh_temp_dir("certificate_written");
-  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   // A quad written as one polygon (triangulated by the reader) hovering above the avatar,
   // and a second quad whose corner dips to touch the avatar.
   const std::string garment = write_text(dir / "garment.obj",
@@ -89,16 +94,13 @@ TEST_CASE("certification reads the file as written, not a welded mesh", "[valida
 TEST_CASE("validation of layers: each against the avatar and against each other",
           "[validate][report]") {
   const auto dir = gr::test::fresh_temp_dir("validation_layers");
-  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   const std::string inner =
-      write_text(dir / "inner.obj",
-                 gr::test::obj_text(triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5})));
+      write_mesh(dir / "inner.obj", triangle({0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.1, 0.9, 0.5}));
   const std::string outer =
-      write_text(dir / "outer.obj",
-                 gr::test::obj_text(triangle({0.2, 0.2, 0.4}, {0.3, 0.2, 0.6}, {0.2, 0.3, 0.6})));
+      write_mesh(dir / "outer.obj", triangle({0.2, 0.2, 0.4}, {0.3, 0.2, 0.6}, {0.2, 0.3, 0.6}));
   const std::string apart =
-      write_text(dir / "apart.obj",
-                 gr::test::obj_text(triangle({0.1, 0.1, 0.9}, {0.9, 0.1, 0.9}, {0.1, 0.9, 0.9})));
+      write_mesh(dir / "apart.obj", triangle({0.1, 0.1, 0.9}, {0.9, 0.1, 0.9}, {0.1, 0.9, 0.9}));
 
   const gr::Validation crossing = gr::validate_files({inner, outer}, avatar, {});
   CHECK_FALSE(crossing.result.certified());
@@ -126,10 +128,10 @@ TEST_CASE("validation of layers: each against the avatar and against each other"
 
 TEST_CASE("the marks file holds exactly the offending faces", "[validate][report]") {
   const auto dir = gr::test::fresh_temp_dir("validation_marks");
-  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   // Face 0 pierces avatar face 0; face 1 is far away; face 2 is degenerate and far away.
-  const std::string garment = write_text(
-      dir / "garment.obj", gr::test::obj_text(make_mesh({{0.2, 0.2, -1},
+  const std::string garment = write_mesh(
+      dir / "garment.obj", make_mesh({{0.2, 0.2, -1},
                                                          {0.3, 0.2, 1},
                                                          {0.2, 0.3, 1},
                                                          {5, 5, 5},
@@ -138,7 +140,7 @@ TEST_CASE("the marks file holds exactly the offending faces", "[validate][report
                                                          {7, 7, 7},
                                                          {8, 8, 8},
                                                          {9, 9, 9}},
-                                                        {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}})));
+                                                        {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}}));
   const gr::Validation v = gr::validate_files({garment}, avatar, {});
   const std::string marks = (dir / "marks.obj").string();
   gr::write_marks_obj(marks, v);
@@ -154,7 +156,7 @@ TEST_CASE("the marks file holds exactly the offending faces", "[validate][report
 
 TEST_CASE("bad input to validation is an InputError", "[validate][report]") {
   const auto dir = gr::test::fresh_temp_dir("validation_bad_input");
-  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   const std::string no_faces = write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\n");
   CHECK_THROWS_AS(gr::validate_files({(dir / "missing.obj").string()}, avatar, {}), gr::InputError);
   CHECK_THROWS_AS(gr::validate_files({no_faces}, avatar, {}), gr::InputError);
@@ -166,16 +168,16 @@ TEST_CASE("bad input to validation is an InputError", "[validate][report]") {
 
 TEST_CASE("report lists are capped while counts stay complete", "[validate][report]") {
   const auto dir = gr::test::fresh_temp_dir("validation_capped");
-  const std::string avatar = write_text(dir / "avatar.obj", gr::test::obj_text(kAvatar));
+  const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   // Two faces piercing the avatar.
   const std::string garment =
-      write_text(dir / "garment.obj", gr::test::obj_text(make_mesh({{0.2, 0.2, -1},
+      write_mesh(dir / "garment.obj", make_mesh({{0.2, 0.2, -1},
                                                                     {0.3, 0.2, 1},
                                                                     {0.2, 0.3, 1},
                                                                     {0.6, 0.6, -1},
                                                                     {0.7, 0.6, 1},
                                                                     {0.6, 0.7, 1}},
-                                                                   {{0, 1, 2}, {3, 4, 5}})));
+                                                                   {{0, 1, 2}, {3, 4, 5}}));
   const gr::Validation v = gr::validate_files({garment}, avatar, {});
   const auto capped = gr::validation_report(v, 1);
   CHECK(capped["counts"]["garment_avatar_intersections"] == 2);

@@ -1,10 +1,12 @@
 #include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "core/mesh/primitives.hpp"
 
 namespace gr {
 
@@ -13,27 +15,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 /// Segments around the bodies: smooth at the scenes' scale, cheap to shrink and certify.
 constexpr int kBodySegments = 48;
-
-/// A quad grid of (rows + 1) × (columns + 1) points from `point(i, j)`, with its last
-/// column welded to the first when `wrap_columns`; two triangles a cell.
-TriangleMesh quad_grid(int rows, int columns, bool wrap_columns,
-                       const std::function<Vector3d(int, int)>& point) {
-  const int stored_columns = wrap_columns ? columns : columns + 1;
-  TriangleMesh mesh;
-  mesh.vertices.resize((rows + 1) * stored_columns, 3);
-  for (int i = 0; i <= rows; ++i)
-    for (int j = 0; j < stored_columns; ++j)
-      mesh.vertices.row(i * stored_columns + j) = point(i, j).transpose();
-  mesh.faces.resize(2 * rows * columns, 3);
-  auto id = [&](int i, int j) { return i * stored_columns + j % stored_columns; };
-  int f = 0;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < columns; ++j) {
-      mesh.faces.row(f++) << id(i, j), id(i, j + 1), id(i + 1, j + 1);
-      mesh.faces.row(f++) << id(i, j), id(i + 1, j + 1), id(i + 1, j);
-    }
-  return mesh;
-}
 
 /// Turns every face of a convex body to face away from `inside`, a point within it.
 void orient_away_from(TriangleMesh& mesh, const Vector3d& inside) {
@@ -120,19 +101,6 @@ TriangleMesh torus(double major, double tube) {
   return mesh;
 }
 
-TriangleMesh box(const Vector3d& half) {
-  TriangleMesh mesh;
-  mesh.vertices.resize(8, 3);
-  for (int c = 0; c < 8; ++c)
-    mesh.vertices.row(c) << (c & 1 ? half.x() : -half.x()), (c & 2 ? half.y() : -half.y()),
-        (c & 4 ? half.z() : -half.z());
-  mesh.faces.resize(12, 3);
-  mesh.faces << 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3, 0, 4, 5, 0, 5, 1, 2, 3, 7, 2, 7, 6, 0, 1, 3, 0,
-      3, 2, 4, 6, 7, 4, 7, 5;
-  orient_away_from(mesh, Vector3d::Zero());
-  return mesh;
-}
-
 /// A flat square patch `size` wide, `cells` cells across, at height z, centred at (x, 0).
 TriangleMesh patch(int cells, double size, double x, double z) {
   const double step = size / cells;
@@ -141,14 +109,14 @@ TriangleMesh patch(int cells, double size, double x, double z) {
   });
 }
 
-/// An open tube about the Z axis from z0 to z1, `around` segments, square-ish cells.
+/// An open tube about the Z axis through (x, 0) from z0 to z1, `around` segments,
+/// square-ish cells.
 TriangleMesh sleeve(int around, double radius, double z0, double z1, double x) {
   const double cell = 2.0 * kPi * radius / around;
   const int rings = std::max(2, static_cast<int>(std::lround((z1 - z0) / cell)));
-  return quad_grid(rings, around, true, [&](int i, int j) {
-    const double phi = 2.0 * kPi * j / around;
-    return Vector3d(x + radius * std::cos(phi), radius * std::sin(phi), z0 + (z1 - z0) * i / rings);
-  });
+  TriangleMesh mesh = open_cylinder(radius, z0, z1, rings + 1, around);
+  mesh.vertices.col(0).array() += x;
+  return mesh;
 }
 
 void move(TriangleMesh& mesh, const SkeletonFreeVariant& variant) {
