@@ -15,7 +15,7 @@
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
-#include "tools/pipeline/extremes_support.hpp"
+#include "core/io/mesh_file.hpp"
 #include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 #include "validate/report/file_digest.hpp"
 
@@ -89,8 +89,8 @@ TEST_CASE("golden bytes: skeleton-free family scenes", "[cli][golden]") {
     const gr::SkeletonFreeScene scene = gr::make_skeleton_free_scene(family, moved);
     const std::string name = std::string("skeleton_free_") + gr::to_string(family);
     const fs::path dir = gr::test::fresh_temp_dir("golden_input_" + name);
-    gr::test::write_mesh_obj(dir / "garment.obj", scene.garment);
-    gr::test::write_mesh_obj(dir / "avatar.obj", scene.avatar);
+    gr::write_obj((dir / "garment.obj").string(), scene.garment);
+    gr::write_obj((dir / "avatar.obj").string(), scene.avatar);
     check_golden(name, {"retarget", "--garment", (dir / "garment.obj").string(), "--avatar",
                         (dir / "avatar.obj").string()});
   }
