@@ -80,13 +80,13 @@ std::string csv_row(const Run& run) {
   return fmt::format(
       "{},{},{},{},{},{},{:g},{:g},{:g},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{:.1f},"
       "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.4g},{:.4g},{:.4g}\n",
-      run.scene, run.config, run.quality, run.preset ? 1 : 0, r.inflate_status + "/" + r.fit_status,
-      r.certified ? 1 : 0, p.solver.newton.gradient_tolerance, p.voxel_size, p.solver.dhat,
+      run.scene, run.config, run.quality, run.preset ? 1 : 0, r.inflate.status + "/" + r.fit.status,
+      r.certified() ? 1 : 0, p.solver.newton.gradient_tolerance, p.voxel_size, p.solver.dhat,
       p.solver.fit_samples_per_face, r.seconds.shrink, r.seconds.inflate, r.seconds.fit,
-      r.seconds.certify, r.seconds.total, r.inflate_newton_iterations, r.fit_newton_iterations,
-      r.al_rounds, r.peak_memory_mb, r.fit_error.mean, r.fit_error.p95, r.shape.mean_edge_change,
-      r.shape.p95_edge_change, r.shape.max_edge_change, r.surface_energy_per_area,
-      r.min_distance / r.scene_scale, gr::to_string(r.ease.fit), r.ease.measure.median_ratio,
+      r.seconds.certify, r.seconds.total, r.inflate.newton_iterations, r.fit.newton_iterations,
+      r.inflate.al_rounds, r.peak_memory_mb, r.certify.fit_error.mean, r.certify.fit_error.p95, r.certify.shape.mean_edge_change,
+      r.certify.shape.p95_edge_change, r.certify.shape.max_edge_change, r.fit.surface_energy_per_area,
+      r.fit.min_distance / r.normalize.scene_scale, gr::to_string(r.ease.fit), r.ease.measure.median_ratio,
       r.ease.measure.mean_error, r.ease.measure.within_25_percent);
 }
 
@@ -112,19 +112,19 @@ std::vector<std::string> table_row(const Run& run) {
   const auto& r = run.result.report;
   return {run.scene,
           run.config,
-          r.certified ? "yes" : "no",
+          r.certified() ? "yes" : "no",
           fmt::format("{:.2f}", r.seconds.shrink),
           fmt::format("{:.2f}", r.seconds.inflate),
           fmt::format("{:.2f}", r.seconds.fit),
           fmt::format("{:.2f}", r.seconds.certify),
           fmt::format("{:.2f}", r.seconds.total),
-          fmt::format("{}/{}", r.inflate_newton_iterations, r.fit_newton_iterations),
-          fmt::format("{}", r.al_rounds),
+          fmt::format("{}/{}", r.inflate.newton_iterations, r.fit.newton_iterations),
+          fmt::format("{}", r.inflate.al_rounds),
           fmt::format("{:.0f}", r.peak_memory_mb),
-          fmt::format("{:.3g} / {:.3g}", r.fit_error.mean, r.fit_error.p95),
-          fmt::format("{:.2f}% / {:.2f}% / {:.2f}%", 100.0 * r.shape.mean_edge_change,
-                      100.0 * r.shape.p95_edge_change, 100.0 * r.shape.max_edge_change),
-          fmt::format("{:.3g}", r.min_distance / r.scene_scale),
+          fmt::format("{:.3g} / {:.3g}", r.certify.fit_error.mean, r.certify.fit_error.p95),
+          fmt::format("{:.2f}% / {:.2f}% / {:.2f}%", 100.0 * r.certify.shape.mean_edge_change,
+                      100.0 * r.certify.shape.p95_edge_change, 100.0 * r.certify.shape.max_edge_change),
+          fmt::format("{:.3g}", r.fit.min_distance / r.normalize.scene_scale),
           gr::to_string(r.ease.fit),
           fmt::format("{:.2f} / {:.2f}", r.ease.measure.median_ratio, r.ease.measure.mean_error),
           fmt::format("{:.0f}%", 100.0 * r.ease.measure.within_25_percent)};
@@ -235,18 +235,18 @@ int check_shape_targets(const std::vector<Run>& runs, const std::vector<BenchSce
     for (const BenchScene& s : scenes)
       if (s.name == target.scene) avatar = s.paths.avatar;
     const auto& b = balanced->result.report;
-    const double fit = b.fit_error.mean / avatar_diagonal(avatar);
-    const bool ok = b.certified && b.shape.mean_edge_change <= target.shape && fit <= target.fit;
+    const double fit = b.certify.fit_error.mean / avatar_diagonal(avatar);
+    const bool ok = b.certified() && b.certify.shape.mean_edge_change <= target.shape && fit <= target.fit;
     failures += !ok;
     std::printf("%s %s tight: shape %.4f (target <= %.2f), fit/diagonal %.5f (<= %.4f)\n",
-                ok ? "PASS" : "FAIL", target.scene, b.shape.mean_edge_change, target.shape, fit,
+                ok ? "PASS" : "FAIL", target.scene, b.certify.shape.mean_edge_change, target.shape, fit,
                 target.fit);
     if (const Run* accurate = find_run(runs, target.scene, "accurate tight")) {
-      const double shape = accurate->result.report.shape.mean_edge_change;
-      const bool kept = shape <= b.shape.mean_edge_change;
+      const double shape = accurate->result.report.certify.shape.mean_edge_change;
+      const bool kept = shape <= b.certify.shape.mean_edge_change;
       failures += !kept;
       std::printf("%s %s accurate tight: shape %.4f (target <= balanced's %.4f)\n",
-                  kept ? "PASS" : "FAIL", target.scene, shape, b.shape.mean_edge_change);
+                  kept ? "PASS" : "FAIL", target.scene, shape, b.certify.shape.mean_edge_change);
     }
   }
   for (const EaseTarget& target : kEaseTargets) {
@@ -254,7 +254,7 @@ int check_shape_targets(const std::vector<Run>& runs, const std::vector<BenchSce
     if (!balanced) continue;
     const gr::RetargetReport& r = balanced->result.report;
     const gr::EaseMeasure& m = r.ease.measure;
-    const bool ok = r.certified && r.ease.fit == gr::FitMode::kEase &&
+    const bool ok = r.certified() && r.ease.fit == gr::FitMode::kEase &&
                     m.median_ratio >= target.median_ratio &&
                     m.within_25_percent >= target.within_25;
     failures += !ok;
@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
         continue;
       }
       std::fprintf(stderr, "  %.2f s, certified %s\n", run.result.report.seconds.total,
-                   run.result.report.certified ? "yes" : "no");
+                   run.result.report.certified() ? "yes" : "no");
       runs.push_back(std::move(run));
     }
   }

@@ -72,14 +72,14 @@ int main(int argc, char** argv) {
           "{},{},{:g},{:g},{:g},{},{},{:.3f},{},{},{},{},{:.4f},{:.4f},{:.4f},"
           "{:.4f},{:.4f},{}\n",
           gr::to_string(family), variant.resolution, variant.offset, variant.turn_degrees,
-          variant.scale, static_cast<int>(result.status), r.certified ? 1 : 0, seconds,
-          r.inflate_newton_iterations, r.fit_newton_iterations, r.inflate_status, r.fit_status,
-          r.shape.scale, r.shape.mean_edge_change, r.shape.p95_edge_change, r.shape.area_change,
-          r.shape.loop_displacement, r.shrink_full_depth_grid ? 1 : 0);
+          variant.scale, static_cast<int>(result.status), r.certified() ? 1 : 0, seconds,
+          r.inflate.newton_iterations, r.fit.newton_iterations, r.inflate.status, r.fit.status,
+          r.certify.shape.scale, r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change, r.certify.shape.area_change,
+          r.certify.shape.loop_displacement, r.shrink.full_depth_grid ? 1 : 0);
       std::printf("| %s | %.2f | %d + %d | %s | %s | %.3f | %.3f | %.3f |\n", scene.name.c_str(),
-                  seconds, r.inflate_newton_iterations, r.fit_newton_iterations,
-                  r.fit_status.c_str(), r.certified ? "yes" : "no", r.shape.scale,
-                  r.shape.mean_edge_change, r.shape.p95_edge_change);
+                  seconds, r.inflate.newton_iterations, r.fit.newton_iterations,
+                  r.fit.status.c_str(), r.certified() ? "yes" : "no", r.certify.shape.scale,
+                  r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change);
       std::fflush(stdout);
     }
   return 0;

@@ -2,17 +2,24 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "core/common/stopwatch.hpp"
+#include "tools/pipeline/run_control.hpp"
 
 namespace gr {
 
-/// Progress lines on stderr: "[   1.234 s] stage: message". Silent when quiet.
+/// What a stage reports while it runs: progress lines on stderr ("[   1.234 s] stage:
+/// message", silent when quiet), the warnings it raises for the report, and the run's
+/// limits, which its long loops check.
 class Progress {
  public:
-  explicit Progress(bool quiet) : quiet_(quiet) {}
+  /// @param control the run's limits; null: none but a stop request (Ctrl-C). It must
+  ///        outlive the Progress.
+  explicit Progress(bool quiet, const RunControl* control = nullptr)
+      : quiet_(quiet), control_(control ? control : &unlimited()) {}
 
   /// Seconds since construction.
   double elapsed_seconds() const { return stopwatch_.seconds(); }
@@ -25,10 +32,28 @@ class Progress {
     std::fflush(stderr);
   }
 
+  /// A warning line, kept for the report.
+  void warn(const std::string& warning) {
+    log("warning", "{}", warning);
+    warnings_.push_back(warning);
+  }
+  /// A warning for the report only (the stage logged it its own way).
+  void record_warning(const std::string& warning) { warnings_.push_back(warning); }
+  /// The warnings so far, in the order raised.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  const RunControl& control() const { return *control_; }
   bool quiet() const { return quiet_; }
 
  private:
+  static const RunControl& unlimited() {
+    static const RunControl control;
+    return control;
+  }
+
   bool quiet_;
+  const RunControl* control_;
+  std::vector<std::string> warnings_;
   Stopwatch stopwatch_;
 };
 

@@ -9,8 +9,8 @@ namespace gr {
 namespace {
 
 nlohmann::json shape_json(const RetargetReport& r) {
-  nlohmann::json shape = shape_report(r.shape, r.shape_thresholds);
-  shape["surface_energy_per_area"] = r.surface_energy_per_area;
+  nlohmann::json shape = shape_report(r.certify.shape, r.certify.shape_thresholds);
+  shape["surface_energy_per_area"] = r.fit.surface_energy_per_area;
   shape["units"] = "normalized scene units for both garments";
   return shape;
 }
@@ -27,7 +27,7 @@ nlohmann::json parameters_json(const RetargetReport& r) {
     else
       parameters[row.name] = value;
   }
-  parameters["lattice"] = r.lattice;
+  parameters["lattice"] = r.normalize.lattice;
   parameters["units"] = "normalized scene units (avatar about 2 tall)";
   return parameters;
 }
@@ -50,54 +50,55 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"certify", r.seconds.certify},
         {"total", r.seconds.total}}},
       {"shrink",
-       {{"mode", to_string(r.shrink_mode)},
-        {"depth", r.shrink_depth},
-        {"medial_vertices", r.shrink_medial_vertices},
-        {"full_depth_grid", r.shrink_full_depth_grid},
-        {"pullback", r.shrink_pullback},
-        {"thinned", r.shrink_thinned}}},
+       {{"mode", to_string(r.shrink.mode)},
+        {"depth", r.shrink.depth},
+        {"medial_vertices", r.shrink.medial_vertices},
+        {"full_depth_grid", r.shrink.full_depth_grid},
+        {"pullback", r.shrink.pullback},
+        {"thinned", r.shrink.thinned}}},
       {"inflate",
-       {{"al_rounds", r.al_rounds},
-        {"resets", r.al_resets},
-        {"newton_iterations", r.inflate_newton_iterations},
-        {"status", r.inflate_status}}},
-      {"fit", {{"newton_iterations", r.fit_newton_iterations}, {"status", r.fit_status}}},
-      {"energies", r.final_energies},
+       {{"al_rounds", r.inflate.al_rounds},
+        {"resets", r.inflate.resets},
+        {"newton_iterations", r.inflate.newton_iterations},
+        {"status", r.inflate.status}}},
+      {"fit", {{"newton_iterations", r.fit.newton_iterations}, {"status", r.fit.status}}},
+      {"energies", r.fit.energies},
       {"min_distance",
-       {{"normalized", r.min_distance}, {"avatar_units", r.min_distance / r.scene_scale}}},
+       {{"normalized", r.fit.min_distance},
+        {"avatar_units", r.fit.min_distance / r.normalize.scene_scale}}},
       {"fit_error",
-       {{"mean", r.fit_error.mean},
-        {"p95", r.fit_error.p95},
-        {"samples", r.fit_error.samples},
+       {{"mean", r.certify.fit_error.mean},
+        {"p95", r.certify.fit_error.p95},
+        {"samples", r.certify.fit_error.samples},
         {"units", "avatar file units"}}},
       {"position",
-       {{"loop_offsets", r.loop_offsets},
+       {{"loop_offsets", r.fit.loop_offsets},
         {"meaning",
          "per boundary loop held along its bone: RMS offset from its place on the "
          "bone, in lengths of the bone"}}},
       {"shape", shape_json(r)},
       {"modelled",
-       {{"terms", r.terms},
-        {"self_contact", r.self_contact},
-        {"self_contact_where", !r.self_contact ? "nowhere"
-                               : r.self_contact_everywhere
+       {{"terms", r.fit.terms},
+        {"self_contact", r.fit.self_contact},
+        {"self_contact_where", !r.fit.self_contact ? "nowhere"
+                               : r.fit.self_contact_everywhere
                                    ? "everywhere"
                                    : "where the garment can fold onto itself"},
         {"fold_free_face_fraction",
-         {{"inflate", r.inflate_fold_free},
-          {"fit", r.fit_fold_free},
+         {{"inflate", r.inflate.fold_free},
+          {"fit", r.fit.fold_free},
           {"meaning",
            "mean share of garment faces per step in regions proven unable to fold "
            "onto themselves, whose self pairs were left out"}}},
-        {"garment_vertices", r.garment_vertices},
-        {"garment_faces", r.garment_faces},
-        {"fit_faces", r.fit_faces},
-        {"avatar_faces_total", r.avatar_faces_total},
-        {"avatar_faces_modelled", r.avatar_faces_modelled}}},
+        {"garment_vertices", r.normalize.garment_vertices},
+        {"garment_faces", r.normalize.garment_faces},
+        {"fit_faces", r.fit.fit_faces},
+        {"avatar_faces_total", r.normalize.avatar_faces_total},
+        {"avatar_faces_modelled", r.fit.avatar_faces_modelled}}},
       {"inferred", to_json(r.inferred)},
       {"peak_memory_mb", r.peak_memory_mb},
       {"estimated_memory_mb", r.estimated_memory_mb},
-      {"certified", r.certified},
+      {"certified", r.certified()},
       {"warnings", r.warnings},
   };
   report["skin"] = {{"written", r.skin.written},
@@ -132,35 +133,35 @@ nlohmann::json to_json(const RetargetReport& r) {
        "distance to the avatar over the garment's median edge ratio, against its distance to "
        "the source body; per_vertex_ratio in OBJ vertex order, null where not measured"}};
   nlohmann::json pairs = nlohmann::json::array();
-  for (const FacePair& p : r.inherited.document_pairs) pairs.push_back({p.first, p.second});
+  for (const FacePair& p : r.normalize.inherited.document_pairs) pairs.push_back({p.first, p.second});
   report["inherited_crossings"] = {
-      {"pairs", r.inherited.pairs},
-      {"still_crossing", r.inherited.still_crossing},
-      {"tangles", r.inherited.tangles},
-      {"tangled_vertices", r.inherited.tangled_vertices},
-      {"attached_pieces", r.inherited.attached_pieces},
+      {"pairs", r.normalize.inherited.pairs},
+      {"still_crossing", r.normalize.inherited.still_crossing},
+      {"tangles", r.normalize.inherited.tangles},
+      {"tangled_vertices", r.normalize.inherited.tangled_vertices},
+      {"attached_pieces", r.normalize.inherited.attached_pieces},
       {"face_pairs", pairs},
       {"meaning",
        "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
        "they are, their neighbourhood left out of self contact; the certificate counts them "
        "apart and fails only on new ones"}};
   report["pierced_faces"] = {
-      {"shrinks", r.pierced.shrinks},
-      {"bones", r.pierced.bones},
-      {"left_out_of_contact", r.pierced.document_faces},
-      {"opened", r.pierced.opened_document_faces},
+      {"shrinks", r.shrink.pierced.shrinks},
+      {"bones", r.shrink.pierced.bones},
+      {"left_out_of_contact", r.shrink.pierced.document_faces},
+      {"opened", r.shrink.pierced.opened_document_faces},
       {"meaning",
        "garment faces (0-based input faces) the avatar passes through as given, such as a cap "
        "around a bone: left out of the garment-avatar contact so that the avatar can shrink "
        "free of the rest; those the avatar still passes through at the end are opened, "
        "left out of the written file"}};
   report["split_non_manifold_edges"] = {
-      {"edges", r.split_edges},
-      {"vertex_copies", r.split_copies},
+      {"edges", r.normalize.split_edges},
+      {"vertex_copies", r.normalize.split_copies},
       {"meaning",
        "edges shared by more than two faces: the faces beyond the first two took tied copies "
        "of the edge's vertices for the solver; the written file welds them back"}};
-  if (!r.shrink_conflict.is_null()) report["shrink_conflict"] = r.shrink_conflict;
+  if (!r.shrink.conflict.is_null()) report["shrink_conflict"] = r.shrink.conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;
 }

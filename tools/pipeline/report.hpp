@@ -63,75 +63,97 @@ struct PiercedReport {
   std::vector<int> opened_document_faces;  ///< left out of the written file, input face ids
 };
 
-/// What a retarget run did and measured; written as report.json.
-struct RetargetReport {
-  Quality quality = Quality::kBalanced;
-  PipelineParameters parameters;
-  StageSeconds seconds;
-
-  ShrinkMode shrink_mode = ShrinkMode::kLevelset;
-  double shrink_depth = 0.0;            ///< levelset erosion d, normalized units (0 for skeleton)
-  int shrink_medial_vertices = 0;       ///< vertices stopped in the medial region
-  bool shrink_full_depth_grid = false;  ///< levelset: eroded deeper than the distance band
-  double shrink_pullback = 0.0;  ///< skeleton: the pullback of the shrunk avatar inflated last
-  /// skeleton: the inflation stalled from the first shrunk avatar and ran again from a
-  /// thinner one
-  bool shrink_thinned = false;
-
-  int al_rounds = 0;
-  int al_resets = 0;
-  int inflate_newton_iterations = 0;
-  int fit_newton_iterations = 0;
-  std::string inflate_status;
-  std::string fit_status;
-  std::map<std::string, double> final_energies;  ///< each term's value after the fit
-
-  double min_distance =
-      0.0;  ///< garment–avatar and garment–garment, normalized units (solver's view, pairs within
-            ///< dhat; else the certified garment–avatar clearance)
+/// Normalize: the scene in normalized units, and what the garment brought as given.
+struct NormalizeReport {
   double scene_scale = 1.0;  ///< normalized units per avatar file unit
   double lattice = 0.0;      ///< normalized coordinates are multiples of this (0: exact)
-  FitError fit_error;        ///< avatar file units
+  int garment_vertices = 0;
+  int garment_faces = 0;
+  int avatar_faces_total = 0;
+  int split_edges = 0;   ///< garment edges of more than two faces, split for the solver
+  int split_copies = 0;  ///< vertex copies the split made (welded back in the written file)
+  InheritedReport inherited;
+};
+
+/// Shrink: the shrunk avatar the inflation starts from.
+struct ShrinkReport {
+  ShrinkMode mode = ShrinkMode::kLevelset;
+  double depth = 0.0;            ///< levelset erosion d, normalized units (0 for skeleton)
+  int medial_vertices = 0;       ///< vertices stopped in the medial region
+  bool full_depth_grid = false;  ///< levelset: eroded deeper than the distance band
+  double pullback = 0.0;         ///< skeleton: the pullback of the shrunk avatar inflated last
+  /// skeleton: the inflation stalled from the first shrunk avatar and ran again from a
+  /// thinner one
+  bool thinned = false;
+  PiercedReport pierced;
+  /// After no valid shrink: the closest shrunk avatar written and the faces still crossing
+  /// (write_closest_shrink); null otherwise.
+  nlohmann::json conflict;
+};
+
+/// Inflate: the avatar grown back under barrier contact (Algorithm 1).
+struct InflateReport {
+  int al_rounds = 0;
+  int resets = 0;
+  int newton_iterations = 0;
+  std::string status;
+  /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
+  double fold_free = 0.0;
+};
+
+/// Fit: the garment settled onto the body, and what the solver modelled.
+struct FitReport {
+  int newton_iterations = 0;
+  std::string status;
+  std::map<std::string, double> energies;  ///< each term's value after the fit
+  std::vector<std::string> terms;
+  /// garment–avatar and garment–garment, normalized units (solver's view, pairs within
+  /// dhat; else the certified garment–avatar clearance)
+  double min_distance = 0.0;
+  /// Per boundary loop held by L_pos: RMS offset from its place along its bone, in bone
+  /// lengths, on the written garment.
+  std::vector<double> loop_offsets;
+  double surface_energy_per_area = 0.0;
+  double fold_free = 0.0;  ///< as InflateReport::fold_free
+  int fit_faces = 0;
+  int avatar_faces_modelled = 0;
+  bool self_contact = true;
+  bool self_contact_everywhere = false;
+};
+
+/// Certify: the written garment checked exactly, and measured against the input.
+struct CertifyReport {
+  bool certified = false;
+  FitError fit_error;  ///< avatar file units
   /// The written garment against the input garment, both in normalized units (so with
   /// skeletons the change of size the skeletons imply is already taken out).
   ShapeChange shape;
   ShapeThresholds shape_thresholds;  ///< as applied (see RetargetOptions::shape_thresholds)
-  double surface_energy_per_area = 0.0;
+};
 
-  // What was modelled, and why.
-  std::vector<std::string> terms;
-  bool self_contact = true;
-  bool self_contact_everywhere = false;
-  /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
-  double inflate_fold_free = 0.0, fit_fold_free = 0.0;
-  /// Per boundary loop held by L_pos: RMS offset from its place along its bone, in bone
-  /// lengths, on the written garment.
-  std::vector<double> loop_offsets;
-  int garment_vertices = 0;
-  int garment_faces = 0;
-  int fit_faces = 0;
-  int avatar_faces_total = 0;
-  int avatar_faces_modelled = 0;
-  double peak_memory_mb = 0.0;
-  /// Peak memory estimated before the solve from the face counts (estimated_peak_memory_mb).
+/// What a retarget run did and measured, one part per stage; written as report.json.
+struct RetargetReport {
+  Quality quality = Quality::kBalanced;
+  PipelineParameters parameters;
+  StageSeconds seconds;
+  /// Peak memory estimated before the solve from the face counts (estimated_memory_mb).
   double estimated_memory_mb = 0.0;
+  double peak_memory_mb = 0.0;
   /// Where the earlier result in the output folder was moved, when this run did not end
   /// certified; empty otherwise.
   std::string previous_result;
 
+  NormalizeReport normalize;
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
-  InheritedReport inherited;
-  PiercedReport pierced;
-  int split_edges = 0;   ///< garment edges of more than two faces, split for the solver
-  int split_copies = 0;  ///< vertex copies the split made (welded back in the written file)
-  /// After no valid shrink: the closest shrunk avatar written and the faces still crossing
-  /// (write_closest_shrink); null otherwise.
-  nlohmann::json shrink_conflict;
+  ShrinkReport shrink;
+  InflateReport inflate;
+  FitReport fit;
+  SkinTransferReport skin;  ///< written with a GLB garment
+  CertifyReport certify;
 
-  bool certified = false;
   std::vector<std::string> warnings;
-  SkinTransferReport skin;
+  bool certified() const { return certify.certified; }
 };
 
 nlohmann::json to_json(const RetargetReport& report);

@@ -74,7 +74,7 @@ TEST_CASE("extremes: barrier stiffness from 1e4 to 1e12", "[pipeline][extremes][
   // So stiff a barrier dwarfs the fit term that from 1e10 the fit creeps to its cap: the
   // garment is still certified, and the report says the fit stopped early.
   REQUIRE(result.status == Outcome::kCertified);
-  if (result.report.fit_status != "converged") {
+  if (result.report.fit.status != "converged") {
     REQUIRE_FALSE(result.report.warnings.empty());
     CHECK_THAT(result.report.warnings.back(), Catch::Contains("--max-newton-iterations"));
   }

@@ -62,13 +62,13 @@ TEST_CASE("extremes: a sliver triangle of aspect ratio 1e6 in the garment",
   const RetargetResult result = run_tent("sliver", garment);
   INFO(result.message);
   // Rounding to the normalized lattice would fold the sliver: exact coordinates are kept.
-  CHECK(result.report.lattice == 0.0);
+  CHECK(result.report.normalize.lattice == 0.0);
   // The sliver's rest frame makes the shape energy stiff by its aspect ratio across one
   // edge: the inflation still snaps, but the fit may stall at its cap; the garment is then
   // still certified and the report says the fit is incomplete, naming the knobs.
-  CHECK(result.report.inflate_status == "snapped");
+  CHECK(result.report.inflate.status == "snapped");
   REQUIRE(result.status == Outcome::kCertified);
-  if (result.report.fit_status != "converged") {
+  if (result.report.fit.status != "converged") {
     REQUIRE_FALSE(result.report.warnings.empty());
     CHECK_THAT(result.report.warnings.back(), Catch::Contains("--max-newton-iterations"));
   }
@@ -83,8 +83,8 @@ TEST_CASE("extremes: an exactly collinear (zero-area) garment face with distinct
       "collinear", test::with_sliver(tent_patch(), kInteriorFace, 0.0), tent_avatar());
   const RetargetResult result = run_retarget(options);
   INFO(result.message);
-  CHECK(result.report.inherited.pairs > 0);
-  const auto& pairs = result.report.inherited.document_pairs;
+  CHECK(result.report.normalize.inherited.pairs > 0);
+  const auto& pairs = result.report.normalize.inherited.document_pairs;
   CHECK(std::find_if(pairs.begin(), pairs.end(), [](const FacePair& p) {
           return p.first == 39 && p.second == 54;
         }) != pairs.end());
@@ -126,7 +126,7 @@ TEST_CASE("extremes: duplicate garment vertices (a seam and unreferenced copies)
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
   REQUIRE(result.status == Outcome::kCertified);
-  CHECK(result.report.garment_vertices == n);
+  CHECK(result.report.normalize.garment_vertices == n);
   // The seam stays closed: both copies of each referenced seam vertex end in one place.
   const ObjDocument written = read_obj(result.garment_path);
   int seam = 0;

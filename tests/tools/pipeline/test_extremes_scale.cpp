@@ -94,14 +94,14 @@ ScaledRun retarget_transformed(const ScaleScene& scene, double scale, const Vect
   REQUIRE(result.status == Outcome::kCertified);
   test::check_outputs_finite(out);
   // With skeletons, every boundary loop ends at its place along its bone.
-  CHECK(result.report.loop_offsets.empty() == options.inputs.source_skeleton.empty());
-  for (const double offset : result.report.loop_offsets) CHECK(offset < 1e-3);
+  CHECK(result.report.fit.loop_offsets.empty() == options.inputs.source_skeleton.empty());
+  for (const double offset : result.report.fit.loop_offsets) CHECK(offset < 1e-3);
   const auto back = [&](const std::string& path) -> MatrixX3d {
     return (read_obj(path).positions.rowwise() - shift.transpose()) / scale;
   };
-  const std::string last_round = fmt::format("round_{:02d}_garment.obj", result.report.al_rounds);
+  const std::string last_round = fmt::format("round_{:02d}_garment.obj", result.report.inflate.al_rounds);
   return {back((out / "frames" / last_round).string()), back(result.garment_path),
-          result.report.shrink_depth};
+          result.report.shrink.depth};
 }
 
 }  // namespace

@@ -50,13 +50,13 @@ TEST_CASE("skeleton-free families: certified, size and shape kept, converged in 
   const RetargetReport& r = result.report;
   INFO(result.message);
   CHECK(result.status == Outcome::kCertified);
-  CHECK(r.certified);
-  CHECK(r.shape.scale >= 0.9);
-  CHECK(r.shape.scale <= 1.1);
-  CHECK(r.shape.mean_edge_change <= 0.1);
-  CHECK(r.inflate_status == "snapped");
-  CHECK(r.fit_status == "converged");
-  CHECK(r.inflate_newton_iterations + r.fit_newton_iterations <= kMaxNewtonSteps);
+  CHECK(r.certified());
+  CHECK(r.certify.shape.scale >= 0.9);
+  CHECK(r.certify.shape.scale <= 1.1);
+  CHECK(r.certify.shape.mean_edge_change <= 0.1);
+  CHECK(r.inflate.status == "snapped");
+  CHECK(r.fit.status == "converged");
+  CHECK(r.inflate.newton_iterations + r.fit.newton_iterations <= kMaxNewtonSteps);
 }
 
 }  // namespace gr
@@ -75,8 +75,8 @@ TEST_CASE("skeleton-free: an erosion deeper than the distance band builds a full
   const RetargetResult result = test::run_and_check(options);
   INFO(result.message);
   CHECK(result.status == Outcome::kCertified);
-  CHECK(result.report.shrink_full_depth_grid);
-  CHECK(result.report.shrink_depth > kDistanceBand);
+  CHECK(result.report.shrink.full_depth_grid);
+  CHECK(result.report.shrink.depth > kDistanceBand);
 }
 
 }  // namespace gr
