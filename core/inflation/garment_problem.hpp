@@ -98,9 +98,8 @@ class GarmentProblem : public Problem {
   /// at t = 1 is the fit's work. Never in the fit.
   bool goal_reached(const Eigen::VectorXd& x) override;
   /// How close to 1 t must be for goal_reached to try the snap: where eta = 1 - sqrt(1 - t)
-  /// reaches eta_target. A wider window, 1 - eta_target (t >= 0.99), cut goblin_puffer's
-  /// inflation from 148 to 128 Newton steps (balanced) but its fit grew from 123 to 140
-  /// and ended 7% farther from the body.
+  /// reaches eta_target. A wider window saves inflation steps but leaves the fit more to do
+  /// and ends farther from the body (tools/bench/results/parameter_choices.md).
   double snap_window() const {
     return (1.0 - parameters_.eta_target) * (1.0 - parameters_.eta_target);
   }

@@ -28,19 +28,14 @@ struct RetargetParameters {
   /// Without skeletons, in the inflation: every vertex pulled to where the round started,
   /// weighted by its share of the garment's area (AnchorEnergy "tether", a proximal term
   /// renewed every augmented-Lagrangian round). Without it the inflation's minimum puts a
-  /// free-floating garment anywhere clear of the body: pushed by the growing avatar, a patch
-  /// on a cone's tip slid 5 units away in 224 Newton steps before the fit pulled it back
-  /// (13 steps with it). Weaker (1e-3, 1e-4) let the steps creep at the trust radius and
-  /// stop short of t = 1 under a thin barrier; stronger (1) held the garment against the
-  /// avatar's push so that t stalled.
+  /// free-floating garment anywhere clear of the body; too weak, steps creep at the trust
+  /// radius; too strong, it holds the garment against the avatar's push so that t stalls
+  /// (tools/bench/results/parameter_choices.md).
   double w_tether = 0.01;
   /// With skeletons, in the fit: edge stretch against the input garment scaled to the
   /// inflated garment's median edge ratio (StretchEnergy), so the fit keeps the pattern
-  /// and leaves the size to the inflation and L_pos. The distortion came from the fit (the
-  /// inflated garment's edges were within 0.3% of their scaled lengths). Measured, balanced,
-  /// fit error / avatar diagonal and scale-free mean edge change: foxgirl_skirt 0.0011 and
-  /// 0.069 without it, 0.0014 and 0.020 at 0.03, 0.0021 and 0.011 at 0.1; goblin_puffer
-  /// 0.0015 and 0.150 without, 0.0022 and 0.071 at 0.03, 0.0028 and 0.056 at 0.1.
+  /// and leaves the size to the inflation and L_pos; stronger keeps the pattern better and
+  /// fits less close (tools/bench/results/parameter_choices.md).
   double w_fit_stretch = 0.03;
   /// The ties holding the copies of a split non-manifold edge on their originals
   /// (TieEnergy): stiff against the shape and fit terms, so that the copies stay close and
@@ -74,9 +69,8 @@ struct RetargetParameters {
     return options;
   }();
   /// The inflation's cap on a Newton step's vertex motion (instead of newton's). Small
-  /// steps keep the garment following the growing avatar rather than jumping ahead of it:
-  /// at 0.1 the puffer's collar caught on the goblin's head in some runs and ended 11% of
-  /// its bone away from its place; at 0.05 and 0.025 it never did, and 0.025 was fastest.
+  /// steps keep the garment following the growing avatar rather than jumping ahead of it
+  /// and catching on it (tools/bench/results/parameter_choices.md).
   double inflation_step_length = 0.025;
   CcdOptions ccd;
 
@@ -86,9 +80,8 @@ struct RetargetParameters {
   double eta_target = 0.99;
   int max_al_rounds = 60;  ///< Newton solves before giving up
   /// Rounds in a row in which t gains less than 1% of its remaining distance to 1 before
-  /// the inflation gives up as stalled. A garment pinched between growing parts of the avatar
-  /// holds t for good: the goblin_puffer with 45 Newton steps per round stopped at t = 0.768
-  /// in round 3 and spent its 57 remaining rounds there, doubling lambda1 to its cap.
+  /// the inflation gives up as stalled: a garment pinched between growing parts of the
+  /// avatar holds t for good, and further rounds only double lambda1 to its cap.
   int max_stalled_rounds = 3;
 };
 

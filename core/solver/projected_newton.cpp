@@ -172,8 +172,8 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     // The step taken judges the model: its actual decrease against the quadratic model's
     // prediction for that same step, also when the line search cut it. Counting a cut step
     // as a failed prediction instead raised mu on every cut, and more on each in a row
-    // (Nielsen's nu): on foxgirl_skirt's fit, where contact pairs entering the barrier cut
-    // every other step, mu climbed to 1.5 and the steps crept (109 fit steps against 71).
+    // (Nielsen's nu), and near contact, where pairs entering the barrier cut steps often,
+    // the steps crept (tools/bench/results/parameter_choices.md).
     if (accepted) {
       const double predicted = -(alpha * slope + 0.5 * alpha * alpha * curvature);
       update_damping(predicted > 0.0 ? (energy - trial_energy) / predicted : 0.0);

@@ -41,8 +41,8 @@ struct NewtonOptions {
   int energy_window = 10;
   /// Trust radius: a damped step that would move anything further than this
   /// (Problem::step_length) is scaled down to it before CCD. Raising the damping until the
-  /// step fits instead turned the inflation's steps towards gradient descent, which jammed
-  /// against contact (foxgirl_skirt: 400-step solves instead of 40).
+  /// step fits instead turns the steps towards gradient descent, which jams against
+  /// contact (tools/bench/results/parameter_choices.md).
   double max_step_length = std::numeric_limits<double>::infinity();
   /// Halvings of the step in the line search before giving up with kNoDescent.
   int max_line_search_halvings = 50;

@@ -12,12 +12,10 @@ struct SkeletonShrinkOptions {
   /// Fraction of the way back from the source bone toward the vertex's own offset from its
   /// target bone: not zero, so no triangle collapses exactly onto a bone; small, so the
   /// shrunk avatar stays near the bones and leaves the garment room between body parts.
-  /// The inflation's Newton steps fall as it grows (the avatar has less far to go): at the
-  /// fast preset, goblin_puffer 130 at 0.05, 91 at 0.15, 76 at 0.25; puffer on foxgirl 60,
-  /// 53, 51; skirt on foxgirl 37, 35, 33; only the skirt on the goblin took more (57, 82,
-  /// 80). At 0.5 the goblin_puffer's inflation stalled: the puffer caught between arm and
-  /// body as they grew. The pipeline inflates again from a fifth of the pullback when the
-  /// inflation stalls.
+  /// Larger, the inflation has less far to go and takes fewer Newton steps, until the
+  /// garment is caught between body parts as they grow (tools/bench/results/
+  /// parameter_choices.md). The pipeline inflates again from a fifth of the pullback when
+  /// the inflation stalls.
   double pullback = 0.25;
   /// When the shrunk avatar still conflicts with the garment, the pullback is halved at
   /// most this many times before giving up (from 0.25, down to about 1e-3).
