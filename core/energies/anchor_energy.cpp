@@ -7,53 +7,54 @@
 
 namespace gr {
 
-AnchorEnergy::AnchorEnergy(const Eigen::Ref<const MatrixX3d>& rest, std::vector<int> vertices,
-                           const DofLayout& layout, std::vector<double> weights, const char* name)
-    : vertices_(std::move(vertices)), weights_(std::move(weights)), name_(name),
-      rest_(vertices_.size(), 3) {
-  if (weights_.empty()) weights_.assign(vertices_.size(), 1.0);
-  if (weights_.size() != vertices_.size())
+AnchorEnergy::AnchorEnergy(const Eigen::Ref<const MatrixX3d>& rest,
+                           const std::vector<int>& vertices, const DofLayout& layout,
+                           std::vector<double> weights, const char* name)
+    : name_(name) {
+  if (weights.empty()) weights.assign(vertices.size(), 1.0);
+  if (weights.size() != vertices.size())
     throw std::invalid_argument("anchor weights: one per anchored vertex");
-  for (double w : weights_)
+  for (double w : weights)
     if (!(w >= 0.0) || !std::isfinite(w))
       throw std::invalid_argument("anchor weights must be finite and non-negative");
-  std::vector<StencilDofs<kStencilSize>> dofs;
-  for (std::size_t k = 0; k < vertices_.size(); ++k) {
-    const int v = vertices_[k];
+  elements_.reserve(vertices.size());
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const int v = vertices[k];
     if (v < 0 || v >= rest.rows())
       throw std::invalid_argument("an anchored vertex id is outside the garment");
-    rest_.row(static_cast<Eigen::Index>(k)) = rest.row(v);
-    dofs.push_back({layout.vertex_dof(v, 0), layout.vertex_dof(v, 1), layout.vertex_dof(v, 2)});
+    elements_.push_back({v, weights[k], rest.row(v).transpose()});
   }
-  assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
+  build_stencils(layout);
 }
 
 void AnchorEnergy::set_rest(const Eigen::Ref<const MatrixX3d>& positions) {
-  for (std::size_t k = 0; k < vertices_.size(); ++k)
-    rest_.row(static_cast<Eigen::Index>(k)) = positions.row(vertices_[k]);
+  for (Element& element : elements_) element.rest = positions.row(element.vertex).transpose();
 }
 
-double AnchorEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
-  return assembly_.value([&](int e) {
-    return 0.5 * weights_[e] * (V.row(vertices_[e]) - rest_.row(e)).squaredNorm();
-  });
+StencilDofs<AnchorEnergy::kStencilSize> AnchorEnergy::element_dofs(const Element& element,
+                                                                   const DofLayout& layout) {
+  return vertex_dofs<kStencilSize>(std::array<int, 1>{element.vertex}, layout);
 }
 
-void AnchorEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
-                            Eigen::VectorXd& gradient) const {
-  assembly_.gradient(
-      [&](int e, LocalVector& g) {
-        const Eigen::Vector3d offset = (V.row(vertices_[e]) - rest_.row(e)).transpose();
-        g = weights_[e] * offset;
-        return 0.5 * g.dot(offset);
-      },
-      gradient);
+AnchorEnergy::LocalVector AnchorEnergy::gather(const Element& element,
+                                               const Eigen::Ref<const MatrixX3d>& V, double) {
+  return V.row(element.vertex).transpose();
 }
 
-const Eigen::SparseMatrix<double>& AnchorEnergy::hessian(const Eigen::Ref<const MatrixX3d>&, double,
-                                                         bool) const {
-  return assembly_.hessian(
-      [&](int e, LocalMatrix& h) { h = weights_[e] * LocalMatrix::Identity(); }, false);
+double AnchorEnergy::element_value(const Element& element, const LocalVector& q) {
+  return 0.5 * element.weight * (q - element.rest).squaredNorm();
+}
+
+double AnchorEnergy::element_gradient(const Element& element, const LocalVector& q,
+                                      LocalVector& g) {
+  const Vector3d offset = q - element.rest;
+  g = element.weight * offset;
+  return 0.5 * g.dot(offset);
+}
+
+void AnchorEnergy::element_hessian(const Element& element, const LocalVector&, bool,
+                                   LocalMatrix& h) {
+  h = element.weight * LocalMatrix::Identity();
 }
 
 std::vector<double> vertex_area_shares(const Eigen::Ref<const MatrixX3d>& vertices,

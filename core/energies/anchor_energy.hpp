@@ -2,11 +2,7 @@
 
 #include <vector>
 
-#include <Eigen/SparseCore>
-
-#include "core/energies/dof_layout.hpp"
-#include "core/energies/energy_term.hpp"
-#include "core/energies/stencil_assembly.hpp"
+#include "core/energies/stencil_term.hpp"
 
 namespace gr {
 
@@ -17,11 +13,14 @@ namespace gr {
 /// garment's area ("tether", a mass-like pull to the input that gives a free-floating
 /// garment a unique place). Units: length^2 (times the weights' unit) in normalized scene
 /// units; the caller multiplies by the term's weight.
-class AnchorEnergy : public EnergyTerm {
+class AnchorEnergy : public StencilTerm<AnchorEnergy, 3> {
  public:
-  static constexpr int kStencilSize = 3;
-  using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
-  using LocalMatrix = Eigen::Matrix<double, kStencilSize, kStencilSize>;
+  /// One anchored vertex; its stencil is x, y, z of the vertex.
+  struct Element {
+    int vertex;
+    double weight;  ///< m_v >= 0
+    Vector3d rest;  ///< r_v
+  };
 
   /// @param rest garment rest positions (#Vg×3).
   /// @param vertices the anchored vertex ids, each in [0, #Vg) (repeats count twice).
@@ -29,28 +28,30 @@ class AnchorEnergy : public EnergyTerm {
   /// @param name the term's name in reports.
   /// @throws std::invalid_argument on an id out of range, or weights of another size or
   ///         negative or not finite.
-  AnchorEnergy(const Eigen::Ref<const MatrixX3d>& rest, std::vector<int> vertices,
+  AnchorEnergy(const Eigen::Ref<const MatrixX3d>& rest, const std::vector<int>& vertices,
                const DofLayout& layout, std::vector<double> weights = {},
                const char* name = "anchor");
 
-  const std::vector<int>& vertices() const { return vertices_; }
+  /// In the order of the constructor's `vertices`.
+  const std::vector<Element>& elements() const { return elements_; }
   /// Moves every anchored vertex's rest place to its row of `positions` (#Vg×3).
   void set_rest(const Eigen::Ref<const MatrixX3d>& positions);
 
   const char* name() const override { return name_; }
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
-  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                Eigen::VectorXd& gradient) const override;
-  /// m_v times the identity on each anchored vertex (already PSD).
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                             bool project_psd) const override;
+
+  static StencilDofs<kStencilSize> element_dofs(const Element& element, const DofLayout& layout);
+  /// q = x_v from garment positions V (#Vg×3); t plays no part.
+  static LocalVector gather(const Element& element, const Eigen::Ref<const MatrixX3d>& V, double t);
+  static double element_value(const Element& element, const LocalVector& q);
+  static double element_gradient(const Element& element, const LocalVector& q, LocalVector& g);
+  /// m_v times the identity (already PSD, so `project_psd` changes nothing).
+  static void element_hessian(const Element& element, const LocalVector& q, bool project_psd,
+                              LocalMatrix& h);
+  static constexpr HessianProjection kProjection = HessianProjection::closed_form;
 
  private:
-  std::vector<int> vertices_;
-  std::vector<double> weights_;  ///< per entry of vertices_
+  std::vector<Element> elements_;
   const char* name_;
-  MatrixX3d rest_;  ///< rest place of each anchored vertex, in vertices_' order
-  StencilAssembly<kStencilSize> assembly_;
 };
 
 /// Each vertex's share of the area of `faces` (#F×3) over `vertices` (#V×3): a third of

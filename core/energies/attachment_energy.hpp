@@ -3,11 +3,7 @@
 #include <array>
 #include <vector>
 
-#include <Eigen/SparseCore>
-
-#include "core/energies/dof_layout.hpp"
-#include "core/energies/energy_term.hpp"
-#include "core/energies/stencil_assembly.hpp"
+#include "core/energies/stencil_term.hpp"
 
 namespace gr {
 
@@ -24,29 +20,31 @@ struct Attachment {
 /// shirt) keeps its place on the piece under it: their contact is not modelled where they
 /// cross as given, so without it the piece could slide through. Units: length^2 in
 /// normalized scene units; the caller multiplies by the weight.
-class AttachmentEnergy : public EnergyTerm {
+class AttachmentEnergy : public StencilTerm<AttachmentEnergy, 12> {
  public:
-  static constexpr int kStencilSize = 12;
-  using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
-  using LocalMatrix = Eigen::Matrix<double, kStencilSize, kStencilSize>;
+  /// One attachment; its stencil is the vertex, then the triangle's three corners.
+  using Element = Attachment;
 
   /// @throw std::invalid_argument when an id is outside the garment or the vertex is a
   ///        corner of its own triangle.
   AttachmentEnergy(std::vector<Attachment> attachments, const DofLayout& layout);
 
+  const std::vector<Element>& elements() const { return attachments_; }
   const char* name() const override { return "attachment"; }
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
-  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                Eigen::VectorXd& gradient) const override;
-  /// Jᵀ J with J = [I, -I/3, -I/3, -I/3] per attachment (already PSD).
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                             bool project_psd) const override;
+
+  static StencilDofs<kStencilSize> element_dofs(const Element& attachment, const DofLayout& layout);
+  /// q = (x_v, x_a, x_b, x_c) from garment positions V (#Vg×3); t plays no part.
+  static LocalVector gather(const Element& attachment, const Eigen::Ref<const MatrixX3d>& V,
+                            double t);
+  static double element_value(const Element& attachment, const LocalVector& q);
+  static double element_gradient(const Element& attachment, const LocalVector& q, LocalVector& g);
+  /// Jᵀ J with J = [I, -I/3, -I/3, -I/3] (already PSD, so `project_psd` changes nothing).
+  static void element_hessian(const Element& attachment, const LocalVector& q, bool project_psd,
+                              LocalMatrix& h);
+  static constexpr HessianProjection kProjection = HessianProjection::closed_form;
 
  private:
-  Vector3d residual(const Attachment& a, const Eigen::Ref<const MatrixX3d>& V) const;
-
   std::vector<Attachment> attachments_;
-  StencilAssembly<kStencilSize> assembly_;
 };
 
 }  // namespace gr

@@ -17,6 +17,9 @@ namespace gr {
 /// H_V is). Keeps the current candidate set: pairs within dhat of the current point, or
 /// after `update_swept_candidates`, pairs that come within dhat anywhere along a motion.
 /// Not safe for concurrent use (it keeps the candidates and a stacked-vertex buffer).
+/// Not a StencilTerm: its pairs, and so its Hessian's pattern, change with every candidate
+/// update, and its stencils are on the stacked vertices (avatar included), summed by
+/// BarrierPotential and chained to x through J, not on x directly.
 class ContactEnergy : public EnergyTerm {
  public:
   /// @param mesh garment and avatar stacked (the avatar's rows in A's order).

@@ -42,6 +42,9 @@ std::vector<bool> fit_face_mask(const Eigen::Ref<const MatrixX3i>& faces, int ve
 /// samples (value, gradient, Hessian of phi) taken for one are kept for the other, and for
 /// the value, while the positions stay the same (the solver asks for all three at each
 /// Newton iterate). Not safe for concurrent use.
+/// Not a StencilTerm: a face's energy is not a function of its gathered corners alone but
+/// of field samples, which are taken for all faces at once and shared between calls; it
+/// sums its faces with StencilAssembly itself.
 class FitEnergy : public EnergyTerm {
  public:
   static constexpr int kStencilSize = 9;

@@ -4,18 +4,30 @@ namespace gr {
 
 PositionEnergy::PositionEnergy(const Eigen::Ref<const MatrixX3d>& initial,
                                const std::vector<LoopBone>& loops, const DofLayout& layout) {
-  std::vector<StencilDofs<kStencilSize>> dofs;
   for (const auto& loop : loops) {
     if (!((loop.bone.source_b - loop.bone.source_a).squaredNorm() > 0.0)) continue;
     for (int v : loop.vertices) {
       LocalVector q;
       q << initial.row(v).transpose(), 0.0;
       elements_.push_back({v, loop.bone, bone_parameter(loop.bone, q, nullptr, nullptr)});
-      dofs.push_back({layout.vertex_dof(v, 0), layout.vertex_dof(v, 1), layout.vertex_dof(v, 2),
-                      layout.t_index()});
     }
   }
-  assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
+  build_stencils(layout);
+}
+
+StencilDofs<PositionEnergy::kStencilSize> PositionEnergy::element_dofs(const Element& element,
+                                                                       const DofLayout& layout) {
+  StencilDofs<kStencilSize> dofs =
+      vertex_dofs<kStencilSize>(std::array<int, 1>{element.vertex}, layout);
+  dofs[3] = layout.t_index();
+  return dofs;
+}
+
+PositionEnergy::LocalVector PositionEnergy::gather(const Element& element,
+                                                   const Eigen::Ref<const MatrixX3d>& V, double t) {
+  LocalVector q;
+  q << V.row(element.vertex).transpose(), t;
+  return q;
 }
 
 double PositionEnergy::bone_parameter(const MovingBone& bone, const LocalVector& q,
@@ -61,37 +73,12 @@ double PositionEnergy::element_gradient(const Element& element, const LocalVecto
   return 0.5 * residual * residual;
 }
 
-void PositionEnergy::element_hessian(const Element& element, const LocalVector& q, LocalMatrix& h) {
+void PositionEnergy::element_hessian(const Element& element, const LocalVector& q, bool,
+                                     LocalMatrix& h) {
   LocalVector ds;
   LocalMatrix dds;
   const double residual = bone_parameter(element.bone, q, &ds, &dds) - element.rest_parameter;
   h = ds * ds.transpose() + residual * dds;
-}
-
-PositionEnergy::LocalVector PositionEnergy::gather(int element,
-                                                   const Eigen::Ref<const MatrixX3d>& V,
-                                                   double t) const {
-  LocalVector q;
-  q << V.row(elements_[static_cast<std::size_t>(element)].vertex).transpose(), t;
-  return q;
-}
-
-double PositionEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double t) const {
-  return assembly_.value([&](int e) { return element_value(elements_[e], gather(e, V, t)); });
-}
-
-void PositionEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                              Eigen::VectorXd& gradient) const {
-  assembly_.gradient(
-      [&](int e, LocalVector& g) { return element_gradient(elements_[e], gather(e, V, t), g); },
-      gradient);
-}
-
-const Eigen::SparseMatrix<double>& PositionEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                           double t, bool project_psd) const {
-  return assembly_.hessian(
-      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V, t), h); },
-      project_psd);
 }
 
 }  // namespace gr

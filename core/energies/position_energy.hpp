@@ -2,11 +2,7 @@
 
 #include <vector>
 
-#include <Eigen/SparseCore>
-
-#include "core/energies/dof_layout.hpp"
-#include "core/energies/energy_term.hpp"
-#include "core/energies/stencil_assembly.hpp"
+#include "core/energies/stencil_term.hpp"
 #include "core/skeleton/loop_bones.hpp"
 
 namespace gr {
@@ -17,12 +13,9 @@ namespace gr {
 /// line; the energy is 1/2 sum (s(t, x) - s_rest)^2, s_rest taken at t = 0 on the initial
 /// garment (so it is zero there). Dimensionless; the caller multiplies by w_pos.
 /// Derivatives are with respect to the vertex and, when the layout frees it, t.
-class PositionEnergy : public EnergyTerm {
+class PositionEnergy : public StencilTerm<PositionEnergy, 4> {
  public:
-  static constexpr int kStencilSize = 4;  ///< x, y, z of the vertex, then t
-  using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
-  using LocalMatrix = Eigen::Matrix<double, kStencilSize, kStencilSize>;
-
+  /// One loop vertex; its stencil is x, y, z of the vertex, then t.
   struct Element {
     int vertex;
     MovingBone bone;
@@ -35,26 +28,25 @@ class PositionEnergy : public EnergyTerm {
                  const DofLayout& layout);
 
   const std::vector<Element>& elements() const { return elements_; }
-
   const char* name() const override { return "position"; }
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
-  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                Eigen::VectorXd& gradient) const override;
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                             bool project_psd) const override;
 
   /// The bone parameter s(t, x) and, when asked, its gradient and Hessian in (x, t).
   static double bone_parameter(const MovingBone& bone, const LocalVector& q, LocalVector* gradient,
                                LocalMatrix* hessian);
+
+  /// The vertex's dofs, then t's (-1 when the layout fixes t).
+  static StencilDofs<kStencilSize> element_dofs(const Element& element, const DofLayout& layout);
+  /// q = (x, t) from garment positions V (#Vg×3) and t.
+  static LocalVector gather(const Element& element, const Eigen::Ref<const MatrixX3d>& V, double t);
   static double element_value(const Element& element, const LocalVector& q);
   static double element_gradient(const Element& element, const LocalVector& q, LocalVector& g);
-  static void element_hessian(const Element& element, const LocalVector& q, LocalMatrix& h);
+  /// Exact Hessian, whatever `project_psd`: the assembly projects it.
+  static void element_hessian(const Element& element, const LocalVector& q, bool project_psd,
+                              LocalMatrix& h);
+  static constexpr HessianProjection kProjection = HessianProjection::generic;
 
  private:
-  LocalVector gather(int element, const Eigen::Ref<const MatrixX3d>& V, double t) const;
-
   std::vector<Element> elements_;
-  StencilAssembly<kStencilSize> assembly_;
 };
 
 }  // namespace gr

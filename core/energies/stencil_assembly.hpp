@@ -23,7 +23,8 @@ using StencilDofs = std::array<int, K>;
 /// a Hessian assembly only writes values. Elements are evaluated in parallel (TBB) into
 /// per-element storage and summed in element order, so results do not depend on the
 /// thread count. One assembly object is not safe to use from two threads at once (it
-/// keeps its per-element scratch).
+/// keeps its per-element scratch). A term over a fixed element list reaches it through
+/// StencilTerm (core/energies/stencil_term.hpp).
 template <int K>
 class StencilAssembly {
  public:

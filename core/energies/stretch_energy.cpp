@@ -20,18 +20,24 @@ StretchEnergy::StretchEnergy(const TriangleMesh& rest, const DofLayout& layout) 
       edge_area[{i, j}] += area / 3.0;
     }
   }
-  std::vector<StencilDofs<kStencilSize>> dofs;
   for (const auto& [edge, area] : edge_area) {
     const double length = (rest.vertices.row(edge.first) - rest.vertices.row(edge.second)).norm();
     if (!(length > 0.0) || !(area > 0.0)) continue;
     elements_.push_back({{edge.first, edge.second}, length, area / (length * length)});
-    StencilDofs<kStencilSize> d;
-    for (int v = 0; v < 2; ++v)
-      for (int axis = 0; axis < 3; ++axis)
-        d[3 * v + axis] = layout.vertex_dof(v == 0 ? edge.first : edge.second, axis);
-    dofs.push_back(d);
   }
-  assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
+  build_stencils(layout);
+}
+
+StencilDofs<StretchEnergy::kStencilSize> StretchEnergy::element_dofs(const Element& element,
+                                                                     const DofLayout& layout) {
+  return vertex_dofs<kStencilSize>(element.vertices, layout);
+}
+
+StretchEnergy::LocalVector StretchEnergy::gather(const Element& element,
+                                                 const Eigen::Ref<const MatrixX3d>& V, double) {
+  LocalVector q;
+  q << V.row(element.vertices[0]).transpose(), V.row(element.vertices[1]).transpose();
+  return q;
 }
 
 double StretchEnergy::element_value(const Element& element, const LocalVector& q) {
@@ -70,34 +76,6 @@ void StretchEnergy::element_hessian(const Element& element, const LocalVector& q
   h.bottomRightCorner<3, 3>() = block;
   h.topRightCorner<3, 3>() = -block;
   h.bottomLeftCorner<3, 3>() = -block;
-}
-
-StretchEnergy::LocalVector StretchEnergy::gather(int element,
-                                                 const Eigen::Ref<const MatrixX3d>& V) const {
-  const Element& e = elements_[static_cast<std::size_t>(element)];
-  LocalVector q;
-  q << V.row(e.vertices[0]).transpose(), V.row(e.vertices[1]).transpose();
-  return q;
-}
-
-double StretchEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
-  return assembly_.value([&](int e) { return element_value(elements_[e], gather(e, V)); });
-}
-
-void StretchEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
-                             Eigen::VectorXd& gradient) const {
-  assembly_.gradient(
-      [&](int e, LocalVector& g) { return element_gradient(elements_[e], gather(e, V), g); },
-      gradient);
-}
-
-const Eigen::SparseMatrix<double>& StretchEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                          double, bool project_psd) const {
-  // The closed-form projection above is exact (the block's eigenvalues are 4w and
-  // 4w (l - L) / l twice, and zero), so the assembly's generic one is not needed.
-  return assembly_.hessian(
-      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V), project_psd, h); },
-      false);
 }
 
 }  // namespace gr

@@ -3,11 +3,7 @@
 #include <array>
 #include <vector>
 
-#include <Eigen/SparseCore>
-
-#include "core/energies/dof_layout.hpp"
-#include "core/energies/energy_term.hpp"
-#include "core/energies/stencil_assembly.hpp"
+#include "core/energies/stencil_term.hpp"
 
 namespace gr {
 
@@ -19,12 +15,9 @@ namespace gr {
 /// not grow with the mesh's resolution. Units: area in normalized scene units (strain is
 /// dimensionless); the caller multiplies by w_stretch. Unlike L_surf it resists uniform
 /// scaling.
-class StretchEnergy : public EnergyTerm {
+class StretchEnergy : public StencilTerm<StretchEnergy, 6> {
  public:
-  static constexpr int kStencilSize = 6;  ///< x_i, then x_j
-  using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
-  using LocalMatrix = Eigen::Matrix<double, kStencilSize, kStencilSize>;
-
+  /// One edge; its stencil is x_i, then x_j.
   struct Element {
     std::array<int, 2> vertices;
     double rest_length;  ///< L > 0
@@ -37,28 +30,25 @@ class StretchEnergy : public EnergyTerm {
   StretchEnergy(const TriangleMesh& rest, const DofLayout& layout);
 
   const std::vector<Element>& elements() const { return elements_; }
-
   const char* name() const override { return "stretch"; }
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
-  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                Eigen::VectorXd& gradient) const override;
-  /// Exact Hessian; with `project_psd` each edge's block keeps its positive part in closed
-  /// form (the transverse stiffness of a compressed edge, negative, is set to zero).
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                             bool project_psd) const override;
 
+  static StencilDofs<kStencilSize> element_dofs(const Element& element, const DofLayout& layout);
+  /// q = (x_i, x_j) from V (#Vg×3); t plays no part.
+  static LocalVector gather(const Element& element, const Eigen::Ref<const MatrixX3d>& V, double t);
   /// One edge's energy, gradient and Hessian at q = (x_i, x_j). At l = 0 the energy is
   /// not differentiable; gradient and Hessian are taken as zero there.
   static double element_value(const Element& element, const LocalVector& q);
   static double element_gradient(const Element& element, const LocalVector& q, LocalVector& g);
+  /// Exact Hessian; with `project_psd` the block keeps its positive part in closed form
+  /// (the transverse stiffness of a compressed edge, negative, is set to zero). That is
+  /// the exact projection: the block's eigenvalues are 4w and 4w (l - L) / l twice, and
+  /// zero.
   static void element_hessian(const Element& element, const LocalVector& q, bool project_psd,
                               LocalMatrix& h);
+  static constexpr HessianProjection kProjection = HessianProjection::closed_form;
 
  private:
-  LocalVector gather(int element, const Eigen::Ref<const MatrixX3d>& V) const;
-
   std::vector<Element> elements_;
-  StencilAssembly<kStencilSize> assembly_;
 };
 
 }  // namespace gr

@@ -90,7 +90,6 @@ SurfaceShapeEnergy::SurfaceShapeEnergy(const TriangleMesh& rest, const DofLayout
   std::sort(half_edges.begin(), half_edges.end());
 
   const auto rest_point = [&](int v) -> Vector3d { return rest.vertices.row(v).transpose(); };
-  std::vector<StencilDofs<kStencilSize>> dofs;
   for (std::size_t i = 0; i < half_edges.size();) {
     std::size_t j = i;
     while (j < half_edges.size() && std::get<0>(half_edges[j]) == std::get<0>(half_edges[i]) &&
@@ -120,22 +119,22 @@ SurfaceShapeEnergy::SurfaceShapeEnergy(const TriangleMesh& rest, const DofLayout
         el.coefficients_second = frame2.partialPivLu().solve(w);
         el.weight = (n1.norm() + n2.norm()) / 6.0;
         elements_.push_back(el);
-        StencilDofs<kStencilSize> d;
-        for (int v = 0; v < 4; ++v)
-          for (int axis = 0; axis < 3; ++axis)
-            d[3 * v + axis] = layout.vertex_dof(el.vertices[v], axis);
-        dofs.push_back(d);
       }
     }
     i = j;
   }
-  assembly_ = StencilAssembly<kStencilSize>(std::move(dofs), layout.dof_count());
+  build_stencils(layout);
 }
 
-LocalVector SurfaceShapeEnergy::gather(int element, const Eigen::Ref<const MatrixX3d>& V) const {
+StencilDofs<SurfaceShapeEnergy::kStencilSize> SurfaceShapeEnergy::element_dofs(
+    const Element& element, const DofLayout& layout) {
+  return vertex_dofs<kStencilSize>(element.vertices, layout);
+}
+
+LocalVector SurfaceShapeEnergy::gather(const Element& element, const Eigen::Ref<const MatrixX3d>& V,
+                                       double) {
   LocalVector q;
-  const auto& vertices = elements_[static_cast<std::size_t>(element)].vertices;
-  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = V.row(vertices[v]).transpose();
+  for (int v = 0; v < 4; ++v) q.segment<3>(3 * v) = V.row(element.vertices[v]).transpose();
   return q;
 }
 
@@ -152,7 +151,7 @@ double SurfaceShapeEnergy::element_gradient(const Element& element, const LocalV
 }
 
 void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVector& q,
-                                         LocalMatrix& h, bool project_psd) {
+                                         bool project_psd, LocalMatrix& h) {
   ReducedJacobian J;
   const Vector3d r = reconstruction_difference(element, q, &J);
   ReducedMatrix reduced = J.transpose() * J;
@@ -186,25 +185,6 @@ void SurfaceShapeEnergy::element_hessian(const Element& element, const LocalVect
   // most elements, since the residual r is small wherever the shape is kept.
   reduced *= 2.0 * element.weight;
   h = expand_reduced(reduced);
-}
-
-double SurfaceShapeEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double) const {
-  return assembly_.value([&](int e) { return element_value(elements_[e], gather(e, V)); });
-}
-
-void SurfaceShapeEnergy::gradient(const Eigen::Ref<const MatrixX3d>& V, double,
-                                  Eigen::VectorXd& gradient) const {
-  assembly_.gradient(
-      [&](int e, LocalVector& g) { return element_gradient(elements_[e], gather(e, V), g); },
-      gradient);
-}
-
-const Eigen::SparseMatrix<double>& SurfaceShapeEnergy::hessian(const Eigen::Ref<const MatrixX3d>& V,
-                                                               double, bool project_psd) const {
-  // Projected in element_hessian, on the 9 edge-vector coordinates.
-  return assembly_.hessian(
-      [&](int e, LocalMatrix& h) { element_hessian(elements_[e], gather(e, V), h, project_psd); },
-      false);
 }
 
 }  // namespace gr

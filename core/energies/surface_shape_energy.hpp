@@ -3,11 +3,9 @@
 #include <array>
 #include <vector>
 
-#include <Eigen/SparseCore>
+#include <Eigen/Core>
 
-#include "core/energies/dof_layout.hpp"
-#include "core/energies/energy_term.hpp"
-#include "core/energies/stencil_assembly.hpp"
+#include "core/energies/stencil_term.hpp"
 
 namespace gr {
 
@@ -22,12 +20,8 @@ namespace gr {
 /// so the Hessian is exact and cheap. The energy is zero for any rigid motion of the rest
 /// shape; it is not invariant under uniform scaling (the normal scales quadratically).
 /// Units: area × length^2 in normalized scene units.
-class SurfaceShapeEnergy : public EnergyTerm {
+class SurfaceShapeEnergy : public StencilTerm<SurfaceShapeEnergy, 12> {
  public:
-  static constexpr int kStencilSize = 12;
-  using LocalVector = Eigen::Matrix<double, kStencilSize, 1>;
-  using LocalMatrix = Eigen::Matrix<double, kStencilSize, kStencilSize>;
-
   /// One interior edge, its two opposite vertices and rest data.
   struct Element {
     std::array<int, 4> vertices;          ///< x0, x1 (the edge), x2, x3 (opposite vertices)
@@ -42,34 +36,26 @@ class SurfaceShapeEnergy : public EnergyTerm {
   SurfaceShapeEnergy(const TriangleMesh& rest, const DofLayout& layout);
 
   const std::vector<Element>& elements() const { return elements_; }
-
-  /// Energy at garment positions V (#Vg×3).
   const char* name() const override { return "surface"; }
-  /// Energy at garment positions V (#Vg×3); t plays no part.
-  double value(const Eigen::Ref<const MatrixX3d>& V, double t) const override;
-  /// Gradient over x (layout.dof_count()), overwritten; returns the energy.
-  void gradient(const Eigen::Ref<const MatrixX3d>& V, double t,
-                Eigen::VectorXd& gradient) const override;
-  /// Hessian over x. With `project_psd` each element's Hessian is made PSD in closed form:
-  /// it is JᵀJ (Gauss–Newton, PSD) plus a second-order part linear in the residual, whose
-  /// spectrum is known (see element_hessian), so the element keeps JᵀJ plus that part's
-  /// positive half. The result lies above the exact Hessian by a rank-two term no larger
-  /// than the second-order part. Where that part is below 1e-3 of JᵀJ (Frobenius norms)
-  /// it is dropped.
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::Ref<const MatrixX3d>& V, double t,
-                                             bool project_psd) const override;
 
+  static StencilDofs<kStencilSize> element_dofs(const Element& element, const DofLayout& layout);
+  /// q = (x0, x1, x2, x3) from garment positions V (#Vg×3); t plays no part.
+  static LocalVector gather(const Element& element, const Eigen::Ref<const MatrixX3d>& V, double t);
   /// Per-element pieces on local coordinates q = (x0, x1, x2, x3).
   static double element_value(const Element& element, const LocalVector& q);
   static double element_gradient(const Element& element, const LocalVector& q, LocalVector& g);
-  static void element_hessian(const Element& element, const LocalVector& q, LocalMatrix& h,
-                              bool project_psd = false);
+  /// With `project_psd` the Hessian is made PSD in closed form: it is JᵀJ (Gauss–Newton,
+  /// PSD) plus a second-order part linear in the residual, whose spectrum is known, so the
+  /// element keeps JᵀJ plus that part's positive half. The result lies above the exact
+  /// Hessian by a rank-two term no larger than the second-order part. Where that part is
+  /// below 1e-3 of JᵀJ (Frobenius norms) it is dropped.
+  static void element_hessian(const Element& element, const LocalVector& q, bool project_psd,
+                              LocalMatrix& h);
+  /// Projected in element_hessian, on the 9 edge-vector coordinates.
+  static constexpr HessianProjection kProjection = HessianProjection::closed_form;
 
  private:
-  LocalVector gather(int element, const Eigen::Ref<const MatrixX3d>& V) const;
-
   std::vector<Element> elements_;
-  StencilAssembly<kStencilSize> assembly_;
 };
 
 }  // namespace gr

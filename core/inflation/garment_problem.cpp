@@ -112,9 +112,9 @@ std::vector<double> GarmentProblem::loop_offsets(const Eigen::VectorXd& x) const
     for (int v : loop.vertices) {
       const auto it = element_of.find(v);
       if (it == element_of.end()) continue;  // a bone of zero length holds nothing
-      PositionEnergy::LocalVector q;
-      q << V.row(v).transpose(), t;
-      sum += 2.0 * PositionEnergy::element_value(*it->second, q);  // (s - s_rest)^2
+      const PositionEnergy::Element& element = *it->second;
+      // (s - s_rest)^2
+      sum += 2.0 * PositionEnergy::element_value(element, PositionEnergy::gather(element, V, t));
       ++count;
     }
     offsets.push_back(count > 0 ? std::sqrt(sum / count) : 0.0);

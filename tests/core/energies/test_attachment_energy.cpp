@@ -16,6 +16,20 @@ TEST_CASE("attachment energy: gradient and Hessian match finite differences",
   test::check_position_energy(energy, x, 1e-6);
 }
 
+TEST_CASE("attachment energy: each attachment's derivatives match finite differences",
+          "[energies][attachment][grad][hess]") {
+  const AttachmentEnergy energy(
+      {{0, {{1, 2, 3}}, Vector3d(0.1, -0.2, 0.3)}, {4, {{1, 3, 5}}, Vector3d(0.0, 0.5, 0.0)}},
+      DofLayout{6});
+  std::srand(32);
+  const MatrixX3d V = MatrixX3d::Random(6, 3);
+  for (const AttachmentEnergy::Element& attachment : energy.elements()) {
+    CAPTURE(attachment.vertex);
+    test::check_element_derivatives<AttachmentEnergy>(
+        attachment, AttachmentEnergy::gather(attachment, V, 1.0), 1e-6);
+  }
+}
+
 TEST_CASE("attachment energy: zero at rest and when the piece moves with its triangle",
           "[energies][attachment]") {
   MatrixX3d V(4, 3);

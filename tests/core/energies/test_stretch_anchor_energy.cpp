@@ -70,6 +70,18 @@ TEST_CASE("stretch energy: zero under rigid motion, derivatives match finite dif
   test::check_position_energy(energy, test::flatten(c.deformed), 1e-5);
 }
 
+TEST_CASE("stretch energy: each edge's derivatives match finite differences",
+          "[energies][stretch][grad][hess]") {
+  const StretchCase c = stretch_case(GENERATE(0, 1, 2));
+  INFO(c.name);
+  const StretchEnergy energy(c.rest, DofLayout{static_cast<int>(c.rest.vertices.rows()), false});
+  for (const StretchEnergy::Element& element : energy.elements()) {
+    CAPTURE(element.vertices[0], element.vertices[1]);
+    test::check_element_derivatives<StretchEnergy>(
+        element, StretchEnergy::gather(element, c.deformed, 1.0), 1e-5);
+  }
+}
+
 TEST_CASE("stretch energy: resists uniform scaling, strain integrated over the rest area",
           "[energies][stretch]") {
   const TriangleMesh grid = test::curved_grid(6);
@@ -129,6 +141,22 @@ TEST_CASE("anchor energy: zero at rest, derivatives match finite differences",
     energy.gradient(V, 0.3, g);
     REQUIRE(g.size() == layout.dof_count());
     CHECK(g[layout.t_index()] == 0.0);
+  }
+}
+
+TEST_CASE("anchor energy: each vertex's derivatives match finite differences",
+          "[energies][anchor][grad][hess]") {
+  const TriangleMesh grid = test::curved_grid(3);
+  const int n = static_cast<int>(grid.vertices.rows());
+  const std::vector<double> shares = vertex_area_shares(grid.vertices, grid.faces);
+  const AnchorEnergy energy(grid.vertices, {0, 4, 8, 4}, DofLayout{n, false},
+                            {shares[0], shares[4], shares[8], 0.0});
+  std::srand(9);
+  const MatrixX3d V = grid.vertices + 0.1 * MatrixX3d::Random(n, 3);
+  for (const AnchorEnergy::Element& element : energy.elements()) {
+    CAPTURE(element.vertex, element.weight);
+    test::check_element_derivatives<AnchorEnergy>(element, AnchorEnergy::gather(element, V, 1.0),
+                                                  1e-6);
   }
 }
 

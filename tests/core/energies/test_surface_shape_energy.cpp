@@ -65,7 +65,7 @@ TEST_CASE("surface shape energy: element gradient and Hessian match finite diffe
   Local g;
   SurfaceShapeEnergy::element_gradient(element, q, g);
   SurfaceShapeEnergy::LocalMatrix h;
-  SurfaceShapeEnergy::element_hessian(element, q, h);
+  SurfaceShapeEnergy::element_hessian(element, q, false, h);
   CHECK(test::fd_matches(g, test::fd_gradient(f, q), 1e-6));
   CHECK(test::fd_matches(h, test::fd_hessian(grad, q), 1e-6));
   CHECK((h - h.transpose()).norm() <= 1e-12 * h.norm());
@@ -154,8 +154,8 @@ TEST_CASE(
   const SurfaceShapeEnergy::LocalVector q = perturbed_corners(rest, element, perturbation);
 
   SurfaceShapeEnergy::LocalMatrix exact, psd;
-  SurfaceShapeEnergy::element_hessian(element, q, exact, false);
-  SurfaceShapeEnergy::element_hessian(element, q, psd, true);
+  SurfaceShapeEnergy::element_hessian(element, q, false, exact);
+  SurfaceShapeEnergy::element_hessian(element, q, true, psd);
   using Eigen::SelfAdjointEigenSolver;
   const SelfAdjointEigenSolver<SurfaceShapeEnergy::LocalMatrix> psd_eigen(psd);
   const SurfaceShapeEnergy::LocalMatrix excess = psd - exact;

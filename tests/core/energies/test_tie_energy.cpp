@@ -14,6 +14,17 @@ TEST_CASE("tie energy: gradient and Hessian match finite differences",
   test::check_position_energy(energy, x, 1e-6);
 }
 
+TEST_CASE("tie energy: each pair's derivatives match finite differences",
+          "[energies][tie][grad][hess]") {
+  const TieEnergy energy({{{0, 3}}, {{1, 4}}, {{3, 2}}}, DofLayout{5});
+  std::srand(22);
+  const MatrixX3d V = MatrixX3d::Random(5, 3);
+  for (const TieEnergy::Element& pair : energy.elements()) {
+    CAPTURE(pair[0], pair[1]);
+    test::check_element_derivatives<TieEnergy>(pair, TieEnergy::gather(pair, V, 1.0), 1e-6);
+  }
+}
+
 TEST_CASE("tie energy: zero on tied vertices together, half the squared gap apart",
           "[energies][tie]") {
   const DofLayout layout{3};
