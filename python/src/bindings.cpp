@@ -163,7 +163,8 @@ NB_MODULE(_core, m) {
   nb::exception<CLI::ParseError>(m, "UsageError", PyExc_ValueError);
   m.attr("version") = GR_VERSION;
   nb::dict outcomes;
-  for (const gr::OutcomeRow& row : gr::outcome_table()) outcomes[nb::int_(row.exit_code)] = row.name;
+  for (const gr::OutcomeRow& row : gr::outcome_table())
+    outcomes[nb::int_(row.exit_code)] = row.name;
   m.attr("outcome_names") = outcomes;
   m.def("run_command", &run_command, nb::arg("arguments"),
         "Runs `garment-retarget ARGUMENTS...` in this process and returns its exit code.");

@@ -64,8 +64,7 @@ class BatchProgress {
     const std::lock_guard<std::mutex> lock(mutex_);
     ++done_;
     if (outcome.reused) ++reused_;
-    if (!outcome.reused && !outcome.ended_certified())
-      ++failed_;
+    if (!outcome.reused && !outcome.ended_certified()) ++failed_;
     if (quiet_) return;
     const std::size_t remaining = total_ - done_;
     const std::size_t computed = done_ - reused_;

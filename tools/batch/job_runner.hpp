@@ -11,8 +11,8 @@ namespace gr {
 /// How one job of a batch ended.
 struct JobOutcome {
   std::string id;
-  /// The name of its exit code's Outcome (status_for_exit_code), "crashed" or "missing"; "reused" is set when certified outputs were
-  /// found and nothing ran.
+  /// The name of its exit code's Outcome (status_for_exit_code), "crashed" or "missing"; "reused"
+  /// is set when certified outputs were found and nothing ran.
   std::string status;
   int exit_code = -1;  ///< the retarget command's; -1 when it died of a signal
   bool reused = false;

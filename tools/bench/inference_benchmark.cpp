@@ -134,12 +134,12 @@ std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std
     for (std::size_t f = 0; f < fit.size(); ++f) fit[f] = !fit[f];
     const gr::FitError on_free = gr::measure_fit_error(garment, fit, scene.avatar.mesh);
     measured = fmt::format("| {:.3g} | {:.3g} | {:.3g} | {:.3f} | {:.3f} | {:.3f} ", on_fit.mean,
-                           on_fit.p95, on_free.mean, r.certify.shape.scale, r.certify.shape.mean_edge_change,
-                           r.certify.shape.p95_edge_change);
+                           on_fit.p95, on_free.mean, r.certify.shape.scale,
+                           r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change);
   }
   return fmt::format("| {} | {} | {} | {} | {} {}| {} | {:.1f} |\n", pairing.name, weights, list,
-                     exit_name(result.status), r.certified() ? "yes" : "no", measured, r.fit.fit_faces,
-                     r.seconds.total);
+                     exit_name(result.status), r.certified() ? "yes" : "no", measured,
+                     r.fit.fit_faces, r.seconds.total);
 }
 
 }  // namespace

@@ -84,10 +84,11 @@ std::string csv_row(const Run& run) {
       r.certified() ? 1 : 0, p.solver.newton.gradient_tolerance, p.voxel_size, p.solver.dhat,
       p.solver.fit_samples_per_face, r.seconds.shrink, r.seconds.inflate, r.seconds.fit,
       r.seconds.certify, r.seconds.total, r.inflate.newton_iterations, r.fit.newton_iterations,
-      r.inflate.al_rounds, r.peak_memory_mb, r.certify.fit_error.mean, r.certify.fit_error.p95, r.certify.shape.mean_edge_change,
-      r.certify.shape.p95_edge_change, r.certify.shape.max_edge_change, r.fit.surface_energy_per_area,
-      r.fit.min_distance / r.normalize.scene_scale, gr::to_string(r.ease.fit), r.ease.measure.median_ratio,
-      r.ease.measure.mean_error, r.ease.measure.within_25_percent);
+      r.inflate.al_rounds, r.peak_memory_mb, r.certify.fit_error.mean, r.certify.fit_error.p95,
+      r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
+      r.certify.shape.max_edge_change, r.fit.surface_energy_per_area,
+      r.fit.min_distance / r.normalize.scene_scale, gr::to_string(r.ease.fit),
+      r.ease.measure.median_ratio, r.ease.measure.mean_error, r.ease.measure.within_25_percent);
 }
 
 const std::vector<std::string> kTableColumns = {"scene",
@@ -110,24 +111,25 @@ const std::vector<std::string> kTableColumns = {"scene",
 
 std::vector<std::string> table_row(const Run& run) {
   const auto& r = run.result.report;
-  return {run.scene,
-          run.config,
-          r.certified() ? "yes" : "no",
-          fmt::format("{:.2f}", r.seconds.shrink),
-          fmt::format("{:.2f}", r.seconds.inflate),
-          fmt::format("{:.2f}", r.seconds.fit),
-          fmt::format("{:.2f}", r.seconds.certify),
-          fmt::format("{:.2f}", r.seconds.total),
-          fmt::format("{}/{}", r.inflate.newton_iterations, r.fit.newton_iterations),
-          fmt::format("{}", r.inflate.al_rounds),
-          fmt::format("{:.0f}", r.peak_memory_mb),
-          fmt::format("{:.3g} / {:.3g}", r.certify.fit_error.mean, r.certify.fit_error.p95),
-          fmt::format("{:.2f}% / {:.2f}% / {:.2f}%", 100.0 * r.certify.shape.mean_edge_change,
-                      100.0 * r.certify.shape.p95_edge_change, 100.0 * r.certify.shape.max_edge_change),
-          fmt::format("{:.3g}", r.fit.min_distance / r.normalize.scene_scale),
-          gr::to_string(r.ease.fit),
-          fmt::format("{:.2f} / {:.2f}", r.ease.measure.median_ratio, r.ease.measure.mean_error),
-          fmt::format("{:.0f}%", 100.0 * r.ease.measure.within_25_percent)};
+  return {
+      run.scene,
+      run.config,
+      r.certified() ? "yes" : "no",
+      fmt::format("{:.2f}", r.seconds.shrink),
+      fmt::format("{:.2f}", r.seconds.inflate),
+      fmt::format("{:.2f}", r.seconds.fit),
+      fmt::format("{:.2f}", r.seconds.certify),
+      fmt::format("{:.2f}", r.seconds.total),
+      fmt::format("{}/{}", r.inflate.newton_iterations, r.fit.newton_iterations),
+      fmt::format("{}", r.inflate.al_rounds),
+      fmt::format("{:.0f}", r.peak_memory_mb),
+      fmt::format("{:.3g} / {:.3g}", r.certify.fit_error.mean, r.certify.fit_error.p95),
+      fmt::format("{:.2f}% / {:.2f}% / {:.2f}%", 100.0 * r.certify.shape.mean_edge_change,
+                  100.0 * r.certify.shape.p95_edge_change, 100.0 * r.certify.shape.max_edge_change),
+      fmt::format("{:.3g}", r.fit.min_distance / r.normalize.scene_scale),
+      gr::to_string(r.ease.fit),
+      fmt::format("{:.2f} / {:.2f}", r.ease.measure.median_ratio, r.ease.measure.mean_error),
+      fmt::format("{:.0f}%", 100.0 * r.ease.measure.within_25_percent)};
 }
 
 const char* kTableNote =
@@ -236,11 +238,12 @@ int check_shape_targets(const std::vector<Run>& runs, const std::vector<BenchSce
       if (s.name == target.scene) avatar = s.paths.avatar;
     const auto& b = balanced->result.report;
     const double fit = b.certify.fit_error.mean / avatar_diagonal(avatar);
-    const bool ok = b.certified() && b.certify.shape.mean_edge_change <= target.shape && fit <= target.fit;
+    const bool ok =
+        b.certified() && b.certify.shape.mean_edge_change <= target.shape && fit <= target.fit;
     failures += !ok;
     std::printf("%s %s tight: shape %.4f (target <= %.2f), fit/diagonal %.5f (<= %.4f)\n",
-                ok ? "PASS" : "FAIL", target.scene, b.certify.shape.mean_edge_change, target.shape, fit,
-                target.fit);
+                ok ? "PASS" : "FAIL", target.scene, b.certify.shape.mean_edge_change, target.shape,
+                fit, target.fit);
     if (const Run* accurate = find_run(runs, target.scene, "accurate tight")) {
       const double shape = accurate->result.report.certify.shape.mean_edge_change;
       const bool kept = shape <= b.certify.shape.mean_edge_change;

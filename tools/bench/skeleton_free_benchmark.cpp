@@ -74,8 +74,9 @@ int main(int argc, char** argv) {
           gr::to_string(family), variant.resolution, variant.offset, variant.turn_degrees,
           variant.scale, static_cast<int>(result.status), r.certified() ? 1 : 0, seconds,
           r.inflate.newton_iterations, r.fit.newton_iterations, r.inflate.status, r.fit.status,
-          r.certify.shape.scale, r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change, r.certify.shape.area_change,
-          r.certify.shape.loop_displacement, r.shrink.full_depth_grid ? 1 : 0);
+          r.certify.shape.scale, r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
+          r.certify.shape.area_change, r.certify.shape.loop_displacement,
+          r.shrink.full_depth_grid ? 1 : 0);
       std::printf("| %s | %.2f | %d + %d | %s | %s | %.3f | %.3f | %.3f |\n", scene.name.c_str(),
                   seconds, r.inflate.newton_iterations, r.fit.newton_iterations,
                   r.fit.status.c_str(), r.certified() ? "yes" : "no", r.certify.shape.scale,

@@ -93,7 +93,8 @@ void add_batch_command(CLI::App& root, int& exit_code) {
     std::printf("%d jobs: %d computed, %d reused, %d failed in %.1f s; summary: %s/summary.csv\n",
                 static_cast<int>(jobs.size()), result.ran, result.reused, result.failed,
                 result.seconds, options->batch.out_dir.c_str());
-    exit_code = result.failed == 0 ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kJobsFailed);
+    exit_code =
+        result.failed == 0 ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kJobsFailed);
   });
 }
 

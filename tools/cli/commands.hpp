@@ -37,8 +37,8 @@ void add_limit_options(CLI::App& command, RunLimits& limits);
 /// `overrides`; the help gives each preset's value.
 void add_parameter_options(CLI::App& command, ParameterOverrides& overrides);
 
-/// Prints a stopped run's error line; returns its exit code (to_exit_code(Outcome::kLimitReached) or
-/// to_exit_code(Outcome::kInterrupted)).
+/// Prints a stopped run's error line; returns its exit code (to_exit_code(Outcome::kLimitReached)
+/// or to_exit_code(Outcome::kInterrupted)).
 int report_stopped_run(const RunStopped& stopped);
 
 /// Each subcommand registers itself on the root app; its callback stores the exit code.

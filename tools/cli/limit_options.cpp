@@ -32,7 +32,8 @@ void add_limit_options(CLI::App& command, RunLimits& limits) {
 
 int report_stopped_run(const RunStopped& stopped) {
   std::fprintf(stderr, "garment-retarget: error: %s; nothing was written\n", stopped.what());
-  return stopped.reason() == StopReason::kInterrupted ? to_exit_code(Outcome::kInterrupted) : to_exit_code(Outcome::kLimitReached);
+  return stopped.reason() == StopReason::kInterrupted ? to_exit_code(Outcome::kInterrupted)
+                                                      : to_exit_code(Outcome::kLimitReached);
 }
 
 }  // namespace gr

@@ -14,7 +14,8 @@ namespace {
 /// The row's help with its unit and its value in each preset.
 std::string parameter_help(const ParameterRow& row) {
   std::string help = row.help;
-  if (std::string(row.unit) == "length") help += " (normalized scene units: the avatar is about 2 tall)";
+  if (std::string(row.unit) == "length")
+    help += " (normalized scene units: the avatar is about 2 tall)";
   if (row.type == ParameterType::kSwitch) return help;
   std::string presets;
   for (const Quality quality : {Quality::kFast, Quality::kBalanced, Quality::kAccurate}) {

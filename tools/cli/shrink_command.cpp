@@ -62,7 +62,8 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
     std::printf("%s\n", result.message.c_str());
     if (result.found) std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());
     std::printf("report: %s\n", result.report_path.c_str());
-    exit_code = result.found ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kNoValidShrink);
+    exit_code =
+        result.found ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kNoValidShrink);
   });
 }
 

@@ -133,7 +133,8 @@ nlohmann::json to_json(const RetargetReport& r) {
        "distance to the avatar over the garment's median edge ratio, against its distance to "
        "the source body; per_vertex_ratio in OBJ vertex order, null where not measured"}};
   nlohmann::json pairs = nlohmann::json::array();
-  for (const FacePair& p : r.normalize.inherited.document_pairs) pairs.push_back({p.first, p.second});
+  for (const FacePair& p : r.normalize.inherited.document_pairs)
+    pairs.push_back({p.first, p.second});
   report["inherited_crossings"] = {
       {"pairs", r.normalize.inherited.pairs},
       {"still_crossing", r.normalize.inherited.still_crossing},

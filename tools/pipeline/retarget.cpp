@@ -41,13 +41,70 @@ void write_report(const std::string& path, const RetargetReport& report) {
 }
 
 /// Writes each inflation round's garment and avatar into `dir` (--frames).
-FrameWriter frame_writer(const fs::path& dir, const Scene& scene, const NormalizedScene& normalized) {
+FrameWriter frame_writer(const fs::path& dir, const Scene& scene,
+                         const NormalizedScene& normalized) {
   return [dir, &scene, &normalized](const std::string& name, const MatrixX3d& garment,
                                     const MatrixX3d& avatar) {
     fs::create_directories(dir);
     write_garment_obj((dir / (name + "_garment.obj")).string(), scene, normalized, garment);
     write_avatar_obj((dir / (name + "_avatar.obj")).string(), scene, normalized, avatar);
   };
+}
+
+/// The report parts of the read, normalize and infer stages.
+void record_inputs(RetargetReport& report, const ReadOutput& read, const NormalizeOutput& normalize,
+                   const InferOutput& inferred) {
+  report.estimated_memory_mb = read.estimated_memory_mb;
+  report.shrink.mode = read.shrink_mode;
+  report.seconds.read = read.seconds;
+  report.normalize = normalize.report;
+  report.seconds.normalize = normalize.seconds;
+  report.inferred = inferred.inferred;
+  report.ease = inferred.ease;
+}
+
+/// The shrink's report part (its time with the binding's).
+void record_shrink(RetargetReport& report, const ShrinkOutput& shrink,
+                   const InferOutput& inferred) {
+  const nlohmann::json conflict = report.shrink.conflict;
+  report.shrink = shrink.report;
+  report.shrink.conflict = conflict;
+  report.seconds.shrink = inferred.binding_seconds + shrink.seconds;
+}
+
+/// What the solver models, from the first solve on (the scope may widen in a solve).
+void record_modelled(RetargetReport& report, const SolverScene& solver) {
+  const RetargetParameters& parameters = report.parameters.solver;
+  report.fit.fit_faces =
+      static_cast<int>(std::count(solver.fit_faces.begin(), solver.fit_faces.end(), true));
+  report.fit.avatar_faces_modelled = solver.avatar_faces_modelled;
+  report.fit.self_contact = parameters.self_contact;
+  report.fit.self_contact_everywhere = parameters.self_contact_everywhere;
+}
+
+/// The certify stage's report part, and the clearance where the solver saw no pair.
+void record_certified(RetargetReport& report, const CertifyOutput& certified) {
+  report.certify = certified.report;
+  report.seconds.certify = certified.seconds;
+  if (report.ease.source_known) {
+    report.ease.measure = certified.ease;
+    report.ease.document_ratio = certified.ease_document_ratio;
+  }
+  report.normalize.inherited.still_crossing = certified.inherited_still_crossing;
+  // The solver sees only pairs within dhat; a garment that ended further away takes the
+  // certificate's clearance, so the report never holds an infinity.
+  if (!std::isfinite(report.fit.min_distance))
+    report.fit.min_distance =
+        certified.certificate.validation.result.totals().smallest_avatar_clearance *
+        report.normalize.scene_scale;
+}
+
+std::string no_valid_shrink_message(const NoValidShrinkError& e, const Scene& scene,
+                                    const NormalizedScene& normalized, ShrinkMode mode) {
+  const Vector3d where = normalized.normalization.garment_to_scene.invert(e.conflict().position);
+  return fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the garment's frame){}",
+                     e.what(), where.x(), where.y(), where.z(),
+                     pierced_cause(scene, normalized, mode));
 }
 
 }  // namespace
@@ -89,27 +146,18 @@ RetargetResult run_retarget(const RetargetOptions& options) {
 
   ReadOutput read = run_read({options.inputs}, {options.limits, options.shrink_mode}, progress);
   Scene& scene = read.scene;
-  report.estimated_memory_mb = read.estimated_memory_mb;
-  report.shrink.mode = read.shrink_mode;
-  report.seconds.read = read.seconds;
   result.report_path = folder.final_path("report.json");
-
-  NormalizeOutput normalized_scene = run_normalize(
+  const NormalizeOutput normalized_scene = run_normalize(
       {scene, options.inputs}, {std::min(parameters.dhat, parameters.fit_support())}, progress);
   const NormalizedScene& normalized = normalized_scene.normalized;
-  const InheritedCrossings& inherited = normalized_scene.inherited;
-  report.normalize = normalized_scene.report;
-  report.seconds.normalize = normalized_scene.seconds;
   double& min_separation = report.parameters.solver.ccd.min_separation;
   min_separation = std::max(min_separation, normalized_scene.ccd_min_separation);
-
-  InferOptions infer_options{options.inference, options.skirt, options.fit_mode, out.string(),
-                             report.parameters.voxel_size};
-  InferOutput inferred =
-      run_infer({scene, normalized, options.inputs, read.shrink_mode}, infer_options, progress);
+  const InferOutput inferred = run_infer({scene, normalized, options.inputs, read.shrink_mode},
+                                         {options.inference, options.skirt, options.fit_mode,
+                                          out.string(), report.parameters.voxel_size},
+                                         progress);
   scene.no_fit = inferred.no_fit;
-  report.inferred = inferred.inferred;
-  report.ease = inferred.ease;
+  record_inputs(report, read, normalized_scene, inferred);
   if (report.inferred.no_fit_inferred) {
     report.inferred.no_fit_path = folder.final_path("no-fit.txt");
     progress.log("no-fit", "inferred ({}): {} vertices, {} faces free, written to {}",
@@ -126,42 +174,28 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                                      report.ease.distance_band, report.parameters.skeleton_pullback,
                                      options.open_pierced_faces};
   ShrinkOutput shrink = run_shrink(shrink_input, shrink_options, progress);
-  report.shrink = shrink.report;
-  report.seconds.shrink = inferred.binding_seconds + shrink.seconds;
+  record_shrink(report, shrink, inferred);
   if (shrink.failure) {
-    const NoValidShrinkError& e = *shrink.failure;
-    const Vector3d where = normalized.normalization.garment_to_scene.invert(e.conflict().position);
     report.shrink.conflict =
-        write_closest_shrink(out.string(), options.out_dir, scene, normalized, e);
+        write_closest_shrink(out.string(), options.out_dir, scene, normalized, *shrink.failure);
     return finish(Outcome::kNoValidShrink,
-                  fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the garment's "
-                              "frame){}",
-                              e.what(), where.x(), where.y(), where.z(),
-                              pierced_cause(scene, normalized, read.shrink_mode)));
+                  no_valid_shrink_message(*shrink.failure, scene, normalized, read.shrink_mode));
   }
   const GridDistanceField distance_field(shrink.grid);
   const auto solver_scene = [&]() {
-    return make_solver_scene({scene, normalized, shrink.shrunk.vertices, distance_field, inherited,
-                              shrink.pierced_faces, options.skirt},
+    return make_solver_scene({scene, normalized, shrink.shrunk.vertices, distance_field,
+                              normalized_scene.inherited, shrink.pierced_faces, options.skirt},
                              parameters);
   };
 
   SolverScene solver = solver_scene();
-  // What the solver models, in the report from the first solve on.
-  const auto record_modelled = [&]() {
-    report.fit.fit_faces =
-        static_cast<int>(std::count(solver.fit_faces.begin(), solver.fit_faces.end(), true));
-    report.fit.avatar_faces_modelled = solver.avatar_faces_modelled;
-    report.fit.self_contact = parameters.self_contact;
-    report.fit.self_contact_everywhere = parameters.self_contact_everywhere;
-  };
-  record_modelled();
+  record_modelled(report, solver);
   InflateOptions inflate_options{parameters, {}};
   if (options.frames) inflate_options.write_frame = frame_writer(out / "frames", scene, normalized);
   const auto inflate = [&]() {
     InflateOutput inflated = run_inflate({solver}, inflate_options, progress);
     add_inflation_attempt(report.inflate, inflated.report);
-    record_modelled();
+    record_modelled(report, solver);
     report.seconds.inflate += inflated.seconds;
     progress.log("inflate", "{} ({:.2f} s)", inflated.inflation.message, report.seconds.inflate);
     return inflated.inflation;
@@ -179,10 +213,9 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                     fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
                                 "failed: {}; and no thinner shrink is free of the garment: {}",
                                 shrink.shrunk.pullback, inflation.message, no_thinner));
-    report.shrink = shrink.report;
-    report.seconds.shrink = inferred.binding_seconds + shrink.seconds;
+    record_shrink(report, shrink, inferred);
     solver = solver_scene();
-    record_modelled();
+    record_modelled(report, solver);
     inflation = inflate();
   }
   if (!inflation.succeeded())
@@ -197,42 +230,30 @@ RetargetResult run_retarget(const RetargetOptions& options) {
               {parameters, report.ease.max_offset}, progress);
   if (fitted.ease_targets) report.ease.targets = std::move(*fitted.ease_targets);
   report.fit = fitted.report;
-  record_modelled();
+  record_modelled(report, solver);
   report.seconds.fit = fitted.seconds;
   const FitResult& fit = fitted.fit;
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(fit.solve.gradient_norm))
     return finish(Outcome::kSolverFailure, "fit failed: " + fit.solve.message);
 
-  const WriteOutput written =
-      run_write({scene, normalized, fit.garment, shrink.pierced_faces, distance_field,
-                 bound_skin_weights, out.string()},
-                {options.format, options.allow_external_assets, options.skin_transfer,
-                 parameters.dhat},
-                progress);
+  const WriteOutput written = run_write(
+      {scene, normalized, fit.garment, shrink.pierced_faces, distance_field, bound_skin_weights,
+       out.string()},
+      {options.format, options.allow_external_assets, options.skin_transfer, parameters.dhat},
+      progress);
   report.shrink.pierced.opened_document_faces = written.opened_document_faces;
   report.skin = written.skin;
   report.seconds.write = written.seconds;
   result.garment_path = folder.final_path(written.file_name);
 
-  const CertifyOutput certified_output = run_certify(
-      {options.inputs, scene, normalized, fit.garment, solver.fit_faces,
-       report.ease.source_known ? &inferred.source_ease : nullptr,
-       (out / written.file_name).string(), result.garment_path, report},
-      {options.shape_thresholds, options.quality, parameters.dhat}, progress);
+  const CertifyOutput certified_output =
+      run_certify({options.inputs, scene, normalized, fit.garment, solver.fit_faces,
+                   report.ease.source_known ? &inferred.source_ease : nullptr,
+                   (out / written.file_name).string(), result.garment_path, report},
+                  {options.shape_thresholds, options.quality, parameters.dhat}, progress);
   const Certificate& certificate = certified_output.certificate;
   write_certificate((out / "certificate.json").string(), certificate);
-  report.certify = certified_output.report;
-  report.seconds.certify = certified_output.seconds;
-  if (report.ease.source_known) {
-    report.ease.measure = certified_output.ease;
-    report.ease.document_ratio = certified_output.ease_document_ratio;
-  }
-  report.normalize.inherited.still_crossing = certified_output.inherited_still_crossing;
-  // The solver sees only pairs within dhat; a garment that ended further away takes the
-  // certificate's clearance, so the report never holds an infinity.
-  if (!std::isfinite(report.fit.min_distance))
-    report.fit.min_distance =
-        certificate.validation.result.totals().smallest_avatar_clearance * report.normalize.scene_scale;
+  record_certified(report, certified_output);
   std::string summary = certify_summary(certificate, report, total.seconds());
   progress.log("certify", "{}", summary);
   Outcome status = report.certified() ? Outcome::kCertified : Outcome::kNotCertified;

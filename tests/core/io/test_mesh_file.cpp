@@ -65,7 +65,8 @@ TEST_CASE("write_obj of a mesh reads back as the same doubles and faces", "[io][
   REQUIRE(read.faces.size() == static_cast<std::size_t>(mesh.faces.rows()));
   for (std::size_t f = 0; f < read.faces.size(); ++f)
     for (std::size_t k = 0; k < 3; ++k) {
-      CHECK(read.faces[f][k].position == mesh.faces(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(k)));
+      CHECK(read.faces[f][k].position ==
+            mesh.faces(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(k)));
       CHECK(read.faces[f][k].texcoord == -1);
       CHECK(read.faces[f][k].normal == -1);
     }

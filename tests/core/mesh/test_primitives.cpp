@@ -16,8 +16,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 /// V − E + F.
 long euler_characteristic(const TriangleMesh& mesh) {
-  return static_cast<long>(mesh.vertices.rows()) - static_cast<long>(unique_edges(mesh.faces).rows()) +
-         static_cast<long>(mesh.faces.rows());
+  return static_cast<long>(mesh.vertices.rows()) -
+         static_cast<long>(unique_edges(mesh.faces).rows()) + static_cast<long>(mesh.faces.rows());
 }
 
 /// Every directed edge at most once and, unless it lies on the boundary, its reverse once:
@@ -39,8 +39,9 @@ long unpaired_directed_edges(const TriangleMesh& mesh) {
 double signed_volume(const TriangleMesh& mesh) {
   double six_volume = 0.0;
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    six_volume += mesh.vertices.row(mesh.faces(f, 0))
-                      .dot(mesh.vertices.row(mesh.faces(f, 1)).cross(mesh.vertices.row(mesh.faces(f, 2))));
+    six_volume +=
+        mesh.vertices.row(mesh.faces(f, 0))
+            .dot(mesh.vertices.row(mesh.faces(f, 1)).cross(mesh.vertices.row(mesh.faces(f, 2))));
   return six_volume / 6.0;
 }
 
@@ -99,7 +100,8 @@ TEST_CASE("icosphere is closed, outward, on its sphere, with 20·4^s faces", "[m
 
 TEST_CASE("quad_grid numbers its points row by row and splits each cell the same way",
           "[mesh][primitives]") {
-  const TriangleMesh grid = quad_grid(2, 3, false, [](int i, int j) { return Vector3d(j, i, 0.0); });
+  const TriangleMesh grid =
+      quad_grid(2, 3, false, [](int i, int j) { return Vector3d(j, i, 0.0); });
   REQUIRE(grid.vertices.rows() == 3 * 4);
   REQUIRE(grid.faces.rows() == 2 * 2 * 3);
   for (int i = 0; i <= 2; ++i)

@@ -11,8 +11,8 @@
 #include "core/io/mesh_file.hpp"
 #include "core/io/obj_document.hpp"
 #include "test_support.hpp"
-#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/extremes_support.hpp"
+#include "tools/pipeline/outcome.hpp"
 
 namespace fs = std::filesystem;
 
@@ -339,7 +339,8 @@ TEST_CASE("A garment that crosses itself as given is retargeted with its crossin
   const std::vector<std::string> validate = {"validate", "--garment",
                                              (out / "garment.obj").string(), "--avatar",
                                              (dir / "sphere.obj").string()};
-  CHECK(gr::test::run_cli(validate, "inherited_validate").exit_code == gr::to_exit_code(gr::Outcome::kNotCertified));
+  CHECK(gr::test::run_cli(validate, "inherited_validate").exit_code ==
+        gr::to_exit_code(gr::Outcome::kNotCertified));
   std::vector<std::string> with_source = validate;
   with_source.insert(with_source.end(), {"--source", garment, "--shape-check", "off"});
   const gr::test::CliRun split = gr::test::run_cli(with_source, "inherited_validate_source");

@@ -14,8 +14,8 @@
 #include <catch2/catch.hpp>
 
 #include "cli_runner.hpp"
-#include "test_support.hpp"
 #include "core/io/mesh_file.hpp"
+#include "test_support.hpp"
 #include "tools/scenes/synthetic/skeleton_free_scenes.hpp"
 #include "validate/report/file_digest.hpp"
 
@@ -60,9 +60,10 @@ void check_golden(const std::string& scene, std::vector<std::string> args) {
 
 TEST_CASE("golden bytes: the bundled scene", "[cli][golden]") {
   const std::string scene = "tools/scenes/dress_form/";
-  check_golden("dress_form", {"retarget", "--garment", gr::test::project_file(scene + "garment.obj"),
-                              "--avatar", gr::test::project_file(scene + "avatar.obj"), "--no-fit",
-                              gr::test::project_file(scene + "no-fit.txt")});
+  check_golden("dress_form",
+               {"retarget", "--garment", gr::test::project_file(scene + "garment.obj"), "--avatar",
+                gr::test::project_file(scene + "avatar.obj"), "--no-fit",
+                gr::test::project_file(scene + "no-fit.txt")});
 }
 
 TEST_CASE("golden bytes: the shared scenes", "[cli][golden]") {
@@ -83,9 +84,9 @@ TEST_CASE("golden bytes: the shared scenes", "[cli][golden]") {
 TEST_CASE("golden bytes: skeleton-free family scenes", "[cli][golden]") {
   // A cap, a ring and a band, in another frame and units than the canonical one.
   const gr::SkeletonFreeVariant moved{12, 0.0, 40.0, 37.0, gr::Vector3d(5.0, -3.0, 2.0)};
-  for (const gr::SkeletonFreeFamily family : {gr::SkeletonFreeFamily::kPatchSphere,
-                                              gr::SkeletonFreeFamily::kPatchTorus,
-                                              gr::SkeletonFreeFamily::kSleeveSphere}) {
+  for (const gr::SkeletonFreeFamily family :
+       {gr::SkeletonFreeFamily::kPatchSphere, gr::SkeletonFreeFamily::kPatchTorus,
+        gr::SkeletonFreeFamily::kSleeveSphere}) {
     const gr::SkeletonFreeScene scene = gr::make_skeleton_free_scene(family, moved);
     const std::string name = std::string("skeleton_free_") + gr::to_string(family);
     const fs::path dir = gr::test::fresh_temp_dir("golden_input_" + name);

@@ -126,7 +126,8 @@ TEST_CASE("A run past its timeout ends with exit 9 and writes nothing", "[cli][l
   CHECK_FALSE(fs::exists(out));
 
   // Over an earlier result: that result stays, whole.
-  REQUIRE(gr::test::run_cli(bundled_retarget(out), "timeout_first").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
+  REQUIRE(gr::test::run_cli(bundled_retarget(out), "timeout_first").exit_code ==
+          gr::to_exit_code(gr::Outcome::kCertified));
   const std::string digest = gr::sha256_of_file((out / "garment.obj").string());
   const CliRun again = gr::test::run_cli(bundled_retarget(out, {"--timeout", "0.05"}), "again");
   CHECK(again.exit_code == gr::to_exit_code(gr::Outcome::kLimitReached));
@@ -139,7 +140,8 @@ TEST_CASE("A run past its timeout ends with exit 9 and writes nothing", "[cli][l
 TEST_CASE("A failed run keeps the earlier certified result aside", "[cli][transaction]") {
   const fs::path root = gr::test::fresh_temp_dir("failed_run_previous");
   const fs::path out = root / "out";
-  REQUIRE(gr::test::run_cli(bundled_retarget(out), "previous_first").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
+  REQUIRE(gr::test::run_cli(bundled_retarget(out), "previous_first").exit_code ==
+          gr::to_exit_code(gr::Outcome::kCertified));
   const std::string digest = gr::sha256_of_file((out / "garment.obj").string());
   // One Newton step per round and one round cannot inflate the avatar.
   const CliRun failed = gr::test::run_cli(
@@ -192,7 +194,8 @@ TEST_CASE("An inferred no-fit list, even an empty one, is read back", "[cli][lim
   std::ofstream(root / "empty-list.txt") << "# no-fit list inferred by garment-retarget\n";
   again = bundled_retarget(root / "third");
   again[6] = (root / "empty-list.txt").string();
-  CHECK(gr::test::run_cli(again, "empty_list").exit_code == gr::to_exit_code(gr::Outcome::kCertified));
+  CHECK(gr::test::run_cli(again, "empty_list").exit_code ==
+        gr::to_exit_code(gr::Outcome::kCertified));
 }
 
 TEST_CASE("Garment and avatar sizes far apart are named, not retargeted", "[cli][limits]") {

@@ -22,7 +22,8 @@ TEST_CASE("validate picks glTF garment meshes, one per layer or every mesh of a 
                          "--report", report},
                         "validate_two_meshes");
   CAPTURE(two.err);
-  CHECK(two.exit_code == gr::to_exit_code(gr::Outcome::kNotCertified));  // production outfits cross their body
+  CHECK(two.exit_code ==
+        gr::to_exit_code(gr::Outcome::kNotCertified));  // production outfits cross their body
   const auto json = nlohmann::json::parse(gr::test::read_text(report));
   REQUIRE(json["garments"].size() == 2);
   CHECK(json["garments"][0]["mesh"] == "Wolf3D_Outfit_Top");

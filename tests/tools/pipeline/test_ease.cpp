@@ -11,8 +11,8 @@
 #include "core/io/obj_document.hpp"
 #include "core/test_shapes.hpp"
 #include "test_support.hpp"
-#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/ease.hpp"
+#include "tools/pipeline/outcome.hpp"
 
 using namespace gr;
 

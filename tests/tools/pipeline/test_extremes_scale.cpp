@@ -75,7 +75,7 @@ struct ScaledRun {
 };
 
 ScaledRun retarget_transformed(const ScaleScene& scene, double scale, const Vector3d& shift,
-                             const std::string& name) {
+                               const std::string& name) {
   const std::string tag = scene.name + "_" + name;
   const fs::path in = test::fresh_temp_dir("extremes_scale_in_" + tag);
   const fs::path out = test::fresh_temp_dir("extremes_scale_out_" + tag);
@@ -99,7 +99,8 @@ ScaledRun retarget_transformed(const ScaleScene& scene, double scale, const Vect
   const auto back = [&](const std::string& path) -> MatrixX3d {
     return (read_obj(path).positions.rowwise() - shift.transpose()) / scale;
   };
-  const std::string last_round = fmt::format("round_{:02d}_garment.obj", result.report.inflate.al_rounds);
+  const std::string last_round =
+      fmt::format("round_{:02d}_garment.obj", result.report.inflate.al_rounds);
   return {back((out / "frames" / last_round).string()), back(result.garment_path),
           result.report.shrink.depth};
 }

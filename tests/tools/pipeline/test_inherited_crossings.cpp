@@ -8,8 +8,8 @@
 
 #include "cli_runner.hpp"
 #include "test_support.hpp"
-#include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/inherited_crossings.hpp"
+#include "tools/pipeline/outcome.hpp"
 #include "validate/checks/self_intersections.hpp"
 
 using namespace gr;

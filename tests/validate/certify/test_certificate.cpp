@@ -130,17 +130,17 @@ TEST_CASE("the marks file holds exactly the offending faces", "[validate][report
   const auto dir = gr::test::fresh_temp_dir("validation_marks");
   const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   // Face 0 pierces avatar face 0; face 1 is far away; face 2 is degenerate and far away.
-  const std::string garment = write_mesh(
-      dir / "garment.obj", make_mesh({{0.2, 0.2, -1},
-                                                         {0.3, 0.2, 1},
-                                                         {0.2, 0.3, 1},
-                                                         {5, 5, 5},
-                                                         {6, 5, 5},
-                                                         {5, 6, 5},
-                                                         {7, 7, 7},
-                                                         {8, 8, 8},
-                                                         {9, 9, 9}},
-                                                        {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}}));
+  const std::string garment =
+      write_mesh(dir / "garment.obj", make_mesh({{0.2, 0.2, -1},
+                                                 {0.3, 0.2, 1},
+                                                 {0.2, 0.3, 1},
+                                                 {5, 5, 5},
+                                                 {6, 5, 5},
+                                                 {5, 6, 5},
+                                                 {7, 7, 7},
+                                                 {8, 8, 8},
+                                                 {9, 9, 9}},
+                                                {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}}));
   const gr::Validation v = gr::validate_files({garment}, avatar, {});
   const std::string marks = (dir / "marks.obj").string();
   gr::write_marks_obj(marks, v);
@@ -170,14 +170,13 @@ TEST_CASE("report lists are capped while counts stay complete", "[validate][repo
   const auto dir = gr::test::fresh_temp_dir("validation_capped");
   const std::string avatar = write_mesh(dir / "avatar.obj", kAvatar);
   // Two faces piercing the avatar.
-  const std::string garment =
-      write_mesh(dir / "garment.obj", make_mesh({{0.2, 0.2, -1},
-                                                                    {0.3, 0.2, 1},
-                                                                    {0.2, 0.3, 1},
-                                                                    {0.6, 0.6, -1},
-                                                                    {0.7, 0.6, 1},
-                                                                    {0.6, 0.7, 1}},
-                                                                   {{0, 1, 2}, {3, 4, 5}}));
+  const std::string garment = write_mesh(dir / "garment.obj", make_mesh({{0.2, 0.2, -1},
+                                                                         {0.3, 0.2, 1},
+                                                                         {0.2, 0.3, 1},
+                                                                         {0.6, 0.6, -1},
+                                                                         {0.7, 0.6, 1},
+                                                                         {0.6, 0.7, 1}},
+                                                                        {{0, 1, 2}, {3, 4, 5}}));
   const gr::Validation v = gr::validate_files({garment}, avatar, {});
   const auto capped = gr::validation_report(v, 1);
   CHECK(capped["counts"]["garment_avatar_intersections"] == 2);

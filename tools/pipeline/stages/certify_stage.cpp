@@ -83,16 +83,15 @@ CertifyOutput run_certify(const CertifyInput& input, const CertifyOptions& optio
       {"inputs",
        {{"garment", {{"path", paths.garment}, {"sha256", sha256_of_file(paths.garment)}}},
         {"avatar", {{"path", paths.avatar}, {"sha256", sha256_of_file(paths.avatar)}}}}},
-      {"output",
-       {{"path", input.recorded_path}, {"sha256", sha256_of_file(input.written_file)}}},
+      {"output", {{"path", input.recorded_path}, {"sha256", sha256_of_file(input.written_file)}}},
       {"parameters", to_json(input.report)["parameters"]},
       {"shape", shape_report(report.shape, report.shape_thresholds)},
       {"quality", to_string(options.quality)}};
   ValidationOptions validation;
   validation.avatar_meshes = paths.avatar_meshes;
   validation.inherited_self_pairs = {inherited_pairs_as_written(input.report)};
-  out.certificate = certify_garment(input.written_file, paths.avatar, extra, validation,
-                                    input.recorded_path);
+  out.certificate =
+      certify_garment(input.written_file, paths.avatar, extra, validation, input.recorded_path);
   report.certified = out.certificate.certified();
   out.seconds = timer.seconds();
 

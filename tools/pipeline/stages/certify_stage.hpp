@@ -19,7 +19,7 @@ struct CertifyInput {
   const std::vector<bool>& fit_faces;
   /// The garment's source ease, for the ease measure; null: not measured.
   const SourceEase* source_ease = nullptr;
-  std::string written_file;  ///< the garment file as written (staging)
+  std::string written_file;   ///< the garment file as written (staging)
   std::string recorded_path;  ///< the path the certificate names (the file's final place)
   /// The run's report so far: its parameters, inherited pairs and opened faces go into
   /// the certificate.

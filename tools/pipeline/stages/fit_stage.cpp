@@ -69,8 +69,8 @@ FitOutput run_fit(const FitInput& input, const FitOptions& options, Progress& pr
         loop, fit.loop_sizes[loop], 100.0 * fit.loop_offsets[loop]));
   }
   const auto surface = fit.energies.find("surface");
-  report.surface_energy_per_area = (surface != fit.energies.end() ? surface->second : 0.0) /
-                                   surface_area(solver.scene.garment);
+  report.surface_energy_per_area =
+      (surface != fit.energies.end() ? surface->second : 0.0) / surface_area(solver.scene.garment);
   return out;
 }
 

@@ -42,8 +42,8 @@ SourceEase infer_ease(const InferInput& input, const InferOptions& options,
   for (std::size_t v = 0; v < source.distance.size(); ++v)
     if (!listed[v]) largest = std::max(largest, source.distance[v]);
   constexpr double kBandVoxels = 4.0;  // the interpolant reads 2 voxels each side
-  ease.distance_band = std::clamp(2.0 * largest + kBandVoxels * options.voxel_size,
-                                  kDistanceBand, kMaxEaseBand);
+  ease.distance_band =
+      std::clamp(2.0 * largest + kBandVoxels * options.voxel_size, kDistanceBand, kMaxEaseBand);
   ease.max_offset = ease.distance_band - kBandVoxels * options.voxel_size;
   progress.log("fit",
                "ease from the source body: largest {:.4g}, {} vertices over cuts, "
@@ -61,8 +61,8 @@ InferOutput run_infer(const InferInput& input, const InferOptions& options, Prog
   if (!input.paths.source_body.empty())
     source_body = read_source_body(input.paths, input.scene, input.normalized);
   out.no_fit = no_fit_for_run(input.scene, input.normalized, !input.paths.no_fit.empty(),
-                              source_body ? &*source_body : nullptr, options.skirt,
-                              options.out_dir, options.inference, out.inferred);
+                              source_body ? &*source_body : nullptr, options.skirt, options.out_dir,
+                              options.inference, out.inferred);
   out.source_ease = infer_ease(input, options, out.no_fit, source_body ? &*source_body : nullptr,
                                out.ease, progress);
   progress.control().check("read");

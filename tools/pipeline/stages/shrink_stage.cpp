@@ -73,9 +73,11 @@ ShrinkResult shrink_leaving_out_pierced(const ShrinkInput& input, const ShrinkOp
   for (int attempt = 1;; ++attempt) {
     report.shrinks = attempt;
     try {
-      ShrinkResult shrunk = shrink_once(input, options, out.grid, pierced, options.pullback, progress);
+      ShrinkResult shrunk =
+          shrink_once(input, options, out.grid, pierced, options.pullback, progress);
       for (const int f : pierced)
-        report.document_faces.push_back(input.scene.garment.face_to_obj[static_cast<std::size_t>(f)]);
+        report.document_faces.push_back(
+            input.scene.garment.face_to_obj[static_cast<std::size_t>(f)]);
       return shrunk;
     } catch (const NoValidShrinkError& e) {
       if (attempt == kPiercedShrinks ||

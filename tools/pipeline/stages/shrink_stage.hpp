@@ -50,8 +50,7 @@ struct ShrinkOutput {
 /// meets next to them, each with a margin of edge rings; a few shrinks and a quarter of
 /// the faces at most. A garment the bones pierce nowhere is never opened.
 /// @throw RunStopped from progress.control().
-ShrinkOutput run_shrink(const ShrinkInput& input, const ShrinkOptions& options,
-                        Progress& progress);
+ShrinkOutput run_shrink(const ShrinkInput& input, const ShrinkOptions& options, Progress& progress);
 
 /// A second shrink of `shrink`'s scene with the same faces left out, thinner (`pullback`):
 /// a thinner avatar leaves the garment more room between body parts. On success it

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "tools/pipeline/contact_scope.hpp"
 #include "core/energies/fit_energy.hpp"
+#include "tools/pipeline/contact_scope.hpp"
 #include "tools/pipeline/shrink_avatar.hpp"
 
 namespace gr {
@@ -27,9 +27,9 @@ SolverScene make_solver_scene(const SolverSceneInput& input, const RetargetParam
   const double largest_avatar_motion =
       (normalized.avatar.vertices - input.shrunk_avatar).rowwise().norm().maxCoeff();
   solver.scope_margin = largest_avatar_motion + kDistanceBand + parameters.dhat;
-  scene.avatar_faces_used =
-      reachable_avatar_faces(normalized.garment.vertices, input.shrunk_avatar,
-                             normalized.avatar.vertices, normalized.avatar.faces, solver.scope_margin);
+  scene.avatar_faces_used = reachable_avatar_faces(normalized.garment.vertices, input.shrunk_avatar,
+                                                   normalized.avatar.vertices,
+                                                   normalized.avatar.faces, solver.scope_margin);
   solver.avatar_faces_modelled = static_cast<int>(scene.avatar_faces_used.size());
   // Every face in reach is every face: nothing a solve could leave, so no second solve.
   if (solver.avatar_faces_modelled == static_cast<int>(normalized.avatar.faces.rows()))

@@ -24,7 +24,7 @@ struct SolverScene {
 struct SolverSceneInput {
   const Scene& scene;  ///< the no-fit list and the split edges' ties
   const NormalizedScene& normalized;
-  const MatrixX3d& shrunk_avatar;      ///< A0 (#Va×3)
+  const MatrixX3d& shrunk_avatar;       ///< A0 (#Va×3)
   const DistanceField& distance_field;  ///< must outlive the SolverScene
   const InheritedCrossings& inherited;
   const std::vector<int>& pierced_faces;  ///< left out of the avatar contact

@@ -75,8 +75,9 @@ void write_garment_glb(const WriteInput& input, const WriteOptions& options, Wri
   const bool bound = !scene.avatar_skin && !scene.avatar_gltf && scene.target_skeleton &&
                      input.bound_skin_weights.size() != 0;
   if (bound)
-    avatar_skin = skin_of_skeleton(
-        *scene.target_skeleton, on_document_positions(input.bound_skin_weights, scene.avatar.obj_to_sim));
+    avatar_skin =
+        skin_of_skeleton(*scene.target_skeleton,
+                         on_document_positions(input.bound_skin_weights, scene.avatar.obj_to_sim));
   if (!avatar_skin) {
     progress.warn(
         "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
@@ -99,17 +100,17 @@ std::vector<int> open_pierced_faces(const WriteInput& input, const WriteOptions&
                                     Progress& progress) {
   if (input.pierced_faces.empty()) return {};
   Scene& scene = input.scene;
-  const std::vector<int> opened =
-      faces_to_open(TriangleMesh{input.garment, input.normalized.garment.faces},
-                    input.normalized.avatar, input.distance_field, input.pierced_faces, options.dhat);
+  const std::vector<int> opened = faces_to_open(
+      TriangleMesh{input.garment, input.normalized.garment.faces}, input.normalized.avatar,
+      input.distance_field, input.pierced_faces, options.dhat);
   std::vector<int> document_faces;
   for (const int f : opened)
     document_faces.push_back(scene.garment.face_to_obj[static_cast<std::size_t>(f)]);
   std::sort(document_faces.begin(), document_faces.end());
   document_faces.erase(std::unique(document_faces.begin(), document_faces.end()),
                        document_faces.end());
-  remove_document_faces(scene.garment_document,
-                        scene.garment_gltf ? &*scene.garment_gltf : nullptr, document_faces);
+  remove_document_faces(scene.garment_document, scene.garment_gltf ? &*scene.garment_gltf : nullptr,
+                        document_faces);
   progress.log("open",
                "{} of the {} faces left out of the avatar contact still meet the "
                "avatar: left out of the written garment",
@@ -125,7 +126,8 @@ std::vector<int> open_pierced_faces(const WriteInput& input, const WriteOptions&
 }  // namespace
 
 void write_garment_obj(const std::string& path, const Scene& scene,
-                       const NormalizedScene& normalized, const Eigen::Ref<const MatrixX3d>& garment) {
+                       const NormalizedScene& normalized,
+                       const Eigen::Ref<const MatrixX3d>& garment) {
   const Normalization& n = normalized.normalization;
   const MatrixX3d positions = export_positions(
       scene.garment_document, scene.garment, n.avatar_to_scene.invert_rows(garment),
@@ -134,7 +136,8 @@ void write_garment_obj(const std::string& path, const Scene& scene,
 }
 
 void write_avatar_obj(const std::string& path, const Scene& scene,
-                      const NormalizedScene& normalized, const Eigen::Ref<const MatrixX3d>& avatar) {
+                      const NormalizedScene& normalized,
+                      const Eigen::Ref<const MatrixX3d>& avatar) {
   const Normalization& n = normalized.normalization;
   const MatrixX3d positions =
       export_positions(scene.avatar_document, scene.avatar, n.avatar_to_scene.invert_rows(avatar),
@@ -146,8 +149,8 @@ WriteOutput run_write(const WriteInput& input, const WriteOptions& options, Prog
   WriteOutput out;
   out.opened_document_faces = open_pierced_faces(input, options, progress);
   const StageTimer timer;
-  const bool glb = options.format.empty() ? input.scene.garment_gltf.has_value()
-                                          : options.format == "glb";
+  const bool glb =
+      options.format.empty() ? input.scene.garment_gltf.has_value() : options.format == "glb";
   if (glb) {
     out.file_name = "garment.glb";
     write_garment_glb(input, options, out, progress);
@@ -155,8 +158,8 @@ WriteOutput run_write(const WriteInput& input, const WriteOptions& options, Prog
     return out;
   }
   out.file_name = "garment.obj";
-  for (const auto& warning :
-       copy_material_files(input.scene.garment_document, input.out_dir, options.allow_external_assets))
+  for (const auto& warning : copy_material_files(input.scene.garment_document, input.out_dir,
+                                                 options.allow_external_assets))
     progress.warn(warning);
   write_garment_obj((fs::path(input.out_dir) / out.file_name).string(), input.scene,
                     input.normalized, input.garment);

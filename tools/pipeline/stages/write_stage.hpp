@@ -49,7 +49,8 @@ WriteOutput run_write(const WriteInput& input, const WriteOptions& options, Prog
 
 /// Writes a garment (normalized #Vg×3) as an OBJ in the avatar's frame and units.
 void write_garment_obj(const std::string& path, const Scene& scene,
-                       const NormalizedScene& normalized, const Eigen::Ref<const MatrixX3d>& garment);
+                       const NormalizedScene& normalized,
+                       const Eigen::Ref<const MatrixX3d>& garment);
 /// Writes an avatar (normalized #Va×3) as an OBJ in its file's frame and units.
 void write_avatar_obj(const std::string& path, const Scene& scene,
                       const NormalizedScene& normalized, const Eigen::Ref<const MatrixX3d>& avatar);

@@ -25,8 +25,8 @@ namespace gr::test {
 /// The scene's files in a fresh folder.
 inline ScenePaths write_stage_scene(const std::string& name) {
   const std::filesystem::path dir = fresh_temp_dir("stages_" + name);
-  const SkeletonFreeScene scene =
-      make_skeleton_free_scene(SkeletonFreeFamily::kSleeveSphere, {8, 0.0, 0.0, 1.0, Vector3d::Zero()});
+  const SkeletonFreeScene scene = make_skeleton_free_scene(SkeletonFreeFamily::kSleeveSphere,
+                                                           {8, 0.0, 0.0, 1.0, Vector3d::Zero()});
   ScenePaths paths;
   paths.garment = (dir / "garment.obj").string();
   paths.avatar = (dir / "avatar.obj").string();
@@ -46,7 +46,8 @@ struct StageChain {
     return *read_;
   }
   const NormalizeOutput& normalize() {
-    if (!normalize_) normalize_ = run_normalize({read().scene, paths}, {parameters.solver.dhat}, progress);
+    if (!normalize_)
+      normalize_ = run_normalize({read().scene, paths}, {parameters.solver.dhat}, progress);
     return *normalize_;
   }
   const InferOutput& infer() {
@@ -54,8 +55,8 @@ struct StageChain {
       InferOptions options;
       options.out_dir = out_dir.string();
       options.voxel_size = parameters.voxel_size;
-      infer_ = run_infer({read().scene, normalize().normalized, paths, read().shrink_mode},
-                         options, progress);
+      infer_ = run_infer({read().scene, normalize().normalized, paths, read().shrink_mode}, options,
+                         progress);
     }
     return *infer_;
   }
@@ -82,7 +83,8 @@ struct StageChain {
     return *inflate_;
   }
   const FitOutput& fit() {
-    if (!fit_) fit_ = run_fit({solver(), inflate().inflation.garment}, {parameters.solver}, progress);
+    if (!fit_)
+      fit_ = run_fit({solver(), inflate().inflation.garment}, {parameters.solver}, progress);
     return *fit_;
   }
   const WriteOutput& write() {

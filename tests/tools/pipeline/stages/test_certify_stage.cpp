@@ -18,7 +18,8 @@ TEST_CASE("certify stage: the written file certified, with its shape and fit err
   report.certify = out.report;
   report.normalize = chain.normalize().report;
   report.fit = chain.fit().report;
-  CHECK_THAT(certify_summary(out.certificate, report, 1.0), Catch::StartsWith("certified: 0 garment-avatar"));
+  CHECK_THAT(certify_summary(out.certificate, report, 1.0),
+             Catch::StartsWith("certified: 0 garment-avatar"));
 }
 
 }  // namespace gr

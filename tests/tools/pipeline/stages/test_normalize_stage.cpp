@@ -11,8 +11,9 @@ TEST_CASE("normalize stage: normalized scene, lattice below the barrier, no inhe
   const NormalizedScene& scene = out.normalized;
   // Every row of the scene as read, in normalized units (the body about 2 across).
   CHECK(scene.garment.vertices.rows() == chain.read().scene.garment.mesh.vertices.rows());
-  const double extent = (scene.avatar.vertices.colwise().maxCoeff() -
-                         scene.avatar.vertices.colwise().minCoeff()).maxCoeff();
+  const double extent =
+      (scene.avatar.vertices.colwise().maxCoeff() - scene.avatar.vertices.colwise().minCoeff())
+          .maxCoeff();
   CHECK(extent == Approx(2.0).epsilon(0.05));
   CHECK(out.report.lattice > 0.0);
   CHECK(out.report.lattice < chain.parameters.solver.dhat);

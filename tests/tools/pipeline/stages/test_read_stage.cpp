@@ -14,7 +14,8 @@ TEST_CASE("read stage: the scene, its memory estimate and the shrink mode", "[pi
   CHECK(read.estimated_memory_mb > 0.0);
 
   Progress progress(true);
-  CHECK_THROWS_AS(run_read({chain.paths}, {RunLimits{}, ShrinkMode::kSkeleton}, progress), InputError);
+  CHECK_THROWS_AS(run_read({chain.paths}, {RunLimits{}, ShrinkMode::kSkeleton}, progress),
+                  InputError);
   RunLimits few_faces;
   few_faces.max_faces = 10;
   CHECK_THROWS_AS(run_read({chain.paths}, {few_faces, {}}, progress), InputError);
