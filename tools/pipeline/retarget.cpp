@@ -107,6 +107,87 @@ std::string no_valid_shrink_message(const NoValidShrinkError& e, const Scene& sc
                      pierced_cause(scene, normalized, mode));
 }
 
+/// What the solve needs from the stages before it.
+struct SolveInput {
+  const Scene& scene;
+  const NormalizedScene& normalized;
+  const InheritedCrossings& inherited;
+  const ShrinkInput& shrink_input;
+  const ShrinkOptions& shrink_options;
+  const DistanceField& distance_field;  ///< the shrink's grid
+  const InferOutput& inferred;
+  bool skirt = false;
+  FrameWriter frames;  ///< empty: no frames
+};
+
+/// The solved garment, or how the solve failed.
+struct Solved {
+  std::optional<std::pair<Outcome, std::string>> failure;
+  SolverScene solver;
+  FitOutput fit;
+};
+
+/// Inflate, then fit. After an inflation that stalled from a skeleton shrink, the avatar is
+/// shrunk thinner (`shrink` replaced) and inflated once more: a thinner avatar leaves the
+/// garment more room between body parts.
+Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport& report,
+                     Progress& progress) {
+  const RetargetParameters& parameters = report.parameters.solver;
+  Solved solved;
+  SolverScene& solver = solved.solver;
+  const auto solver_scene = [&]() {
+    solver = make_solver_scene({in.scene, in.normalized, shrink.shrunk.vertices, in.distance_field,
+                                in.inherited, shrink.pierced_faces, in.skirt},
+                               parameters);
+    record_modelled(report, solver);
+  };
+  const auto inflate = [&]() {
+    InflateOutput inflated = run_inflate({solver}, {parameters, in.frames}, progress);
+    add_inflation_attempt(report.inflate, inflated.report);
+    record_modelled(report, solver);
+    report.seconds.inflate += inflated.seconds;
+    progress.log("inflate", "{} ({:.2f} s)", inflated.inflation.message, report.seconds.inflate);
+    return inflated.inflation;
+  };
+  solver_scene();
+  InflationResult inflation = inflate();
+  if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure &&
+      in.shrink_options.mode == ShrinkMode::kSkeleton) {
+    const double pullback = kStalledPullbackFactor * shrink.shrunk.pullback;
+    const std::string no_thinner =
+        run_thinner_shrink(in.shrink_input, in.shrink_options, pullback, shrink, progress);
+    // The shrunk avatar is what failed: one the garment can escape from does not exist.
+    if (!no_thinner.empty()) {
+      solved.failure = {Outcome::kNoValidShrink,
+                        fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
+                                    "failed: {}; and no thinner shrink is free of the garment: {}",
+                                    shrink.shrunk.pullback, inflation.message, no_thinner)};
+      return solved;
+    }
+    record_shrink(report, shrink, in.inferred);
+    solver_scene();
+    inflation = inflate();
+  }
+  if (!inflation.succeeded()) {
+    solved.failure = {Outcome::kSolverFailure,
+                      "inflation failed: " + inflation.message +
+                          "; allow more work with --max-al-rounds and --max-newton-iterations, or "
+                          "widen the barrier with --dhat"};
+    return solved;
+  }
+  const bool ease_fit = report.ease.fit == FitMode::kEase;
+  solved.fit = run_fit({solver, inflation.garment, ease_fit ? &in.inferred.source_ease : nullptr},
+                       {parameters, report.ease.max_offset}, progress);
+  if (solved.fit.ease_targets) report.ease.targets = std::move(*solved.fit.ease_targets);
+  report.fit = solved.fit.report;
+  record_modelled(report, solver);
+  report.seconds.fit = solved.fit.seconds;
+  const NewtonResult& solve = solved.fit.fit.solve;
+  if (solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(solve.gradient_norm))
+    solved.failure = {Outcome::kSolverFailure, "fit failed: " + solve.message};
+  return solved;
+}
+
 }  // namespace
 
 RetargetResult run_retarget(const RetargetOptions& options) {
@@ -182,59 +263,14 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                   no_valid_shrink_message(*shrink.failure, scene, normalized, read.shrink_mode));
   }
   const GridDistanceField distance_field(shrink.grid);
-  const auto solver_scene = [&]() {
-    return make_solver_scene({scene, normalized, shrink.shrunk.vertices, distance_field,
-                              normalized_scene.inherited, shrink.pierced_faces, options.skirt},
-                             parameters);
-  };
-
-  SolverScene solver = solver_scene();
-  record_modelled(report, solver);
-  InflateOptions inflate_options{parameters, {}};
-  if (options.frames) inflate_options.write_frame = frame_writer(out / "frames", scene, normalized);
-  const auto inflate = [&]() {
-    InflateOutput inflated = run_inflate({solver}, inflate_options, progress);
-    add_inflation_attempt(report.inflate, inflated.report);
-    record_modelled(report, solver);
-    report.seconds.inflate += inflated.seconds;
-    progress.log("inflate", "{} ({:.2f} s)", inflated.inflation.message, report.seconds.inflate);
-    return inflated.inflation;
-  };
-  InflationResult inflation = inflate();
-  if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure &&
-      read.shrink_mode == ShrinkMode::kSkeleton) {
-    // A thinner avatar leaves the garment more room between body parts.
-    const double pullback = kStalledPullbackFactor * shrink.shrunk.pullback;
-    const std::string no_thinner =
-        run_thinner_shrink(shrink_input, shrink_options, pullback, shrink, progress);
-    // The shrunk avatar is what failed: one the garment can escape from does not exist.
-    if (!no_thinner.empty())
-      return finish(Outcome::kNoValidShrink,
-                    fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
-                                "failed: {}; and no thinner shrink is free of the garment: {}",
-                                shrink.shrunk.pullback, inflation.message, no_thinner));
-    record_shrink(report, shrink, inferred);
-    solver = solver_scene();
-    record_modelled(report, solver);
-    inflation = inflate();
-  }
-  if (!inflation.succeeded())
-    return finish(Outcome::kSolverFailure,
-                  "inflation failed: " + inflation.message +
-                      "; allow more work with --max-al-rounds and --max-newton-iterations, or "
-                      "widen the barrier with --dhat");
-
-  const bool ease_fit = report.ease.fit == FitMode::kEase;
-  FitOutput fitted =
-      run_fit({solver, inflation.garment, ease_fit ? &inferred.source_ease : nullptr},
-              {parameters, report.ease.max_offset}, progress);
-  if (fitted.ease_targets) report.ease.targets = std::move(*fitted.ease_targets);
-  report.fit = fitted.report;
-  record_modelled(report, solver);
-  report.seconds.fit = fitted.seconds;
-  const FitResult& fit = fitted.fit;
-  if (fit.solve.status == SolverStatus::kNonFiniteEnergy || !std::isfinite(fit.solve.gradient_norm))
-    return finish(Outcome::kSolverFailure, "fit failed: " + fit.solve.message);
+  const FrameWriter frames =
+      options.frames ? frame_writer(out / "frames", scene, normalized) : FrameWriter();
+  Solved solved = solve_garment({scene, normalized, normalized_scene.inherited, shrink_input,
+                                 shrink_options, distance_field, inferred, options.skirt, frames},
+                                shrink, report, progress);
+  if (solved.failure) return finish(solved.failure->first, solved.failure->second);
+  const SolverScene& solver = solved.solver;
+  const FitResult& fit = solved.fit.fit;
 
   const WriteOutput written = run_write(
       {scene, normalized, fit.garment, shrink.pierced_faces, distance_field, bound_skin_weights,
