@@ -19,13 +19,15 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-from ._core import InputError, OutputError, UsageError, outcome_names, read_mesh, run_command, version
+from ._core import (InputError, OutputError, UsageError, check_parameter, outcome_names, parameters, read_mesh,
+                    run_command, version)
 
 __all__ = [
     "InputError",
     "OutputError",
     "UsageError",
     "batch",
+    "parameters",
     "program_path",
     "read_mesh",
     "retarget",
@@ -116,6 +118,9 @@ def _scene_command(command: str, garment: Any, avatar: Any, out: str | os.PathLi
     """Runs COMMAND --garment G --avatar A --out DIR with `options` (``quiet`` by default);
     returns the exit code, what ``outputs(DIR, exit_code)`` reads and ``out``."""
     options.setdefault("quiet", True)
+    if command == "retarget":
+        for keyword, value in options.items():
+            check_parameter(keyword, value)
     with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
         arguments = [command, "--garment", _mesh_file(garment, inputs, "garment"),
                      "--avatar", _mesh_file(avatar, inputs, "avatar"), "--out", folder]

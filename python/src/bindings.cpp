@@ -19,6 +19,7 @@
 #include "tools/batch/batch_run.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/pipeline/outcome.hpp"
+#include "tools/pipeline/parameters.hpp"
 #include "tools/pipeline/run_control.hpp"
 
 namespace nb = nanobind;
@@ -154,6 +155,50 @@ void write_summary(const std::string& manifest, const std::string& out_dir,
   gr::write_batch_summary(out_dir, gr::read_manifest(manifest), reused_ids);
 }
 
+/// Every knob of parameter_table() that a run may set, as dicts: name (report.json key),
+/// option (the keyword, with '_'), type, unit, help, range and the value per preset.
+nb::list parameters() {
+  nb::list rows;
+  for (const gr::ParameterRow& row : gr::parameter_table()) {
+    if (*row.option == '\0') continue;
+    nb::dict d;
+    d["name"] = row.name;
+    std::string keyword = row.option;
+    for (char& c : keyword)
+      if (c == '-') c = '_';
+    d["option"] = keyword;
+    d["type"] = row.type == gr::ParameterType::kReal    ? "real"
+                : row.type == gr::ParameterType::kCount ? "count"
+                                                        : "switch";
+    d["unit"] = row.unit;
+    d["help"] = row.help;
+    nb::dict presets;
+    for (const gr::Quality quality : {gr::Quality::kFast, gr::Quality::kBalanced, gr::Quality::kAccurate})
+      presets[gr::to_string(quality)] = row.get(gr::parameters_for_quality(quality));
+    d["presets"] = presets;
+    rows.append(d);
+  }
+  return rows;
+}
+
+/// Checks a knob's keyword value against its row, as the command line would: raises
+/// UsageError naming the keyword. Keywords that are not knobs pass.
+void check_parameter(const std::string& keyword, nb::handle value) {
+  const gr::ParameterRow* row = gr::find_parameter_option(keyword);
+  if (row == nullptr) return;
+  const auto refuse = [&](const std::string& why) {
+    throw CLI::ValidationError(keyword, keyword + " " + why);
+  };
+  if (row->type == gr::ParameterType::kSwitch) {
+    if (!nb::isinstance<nb::bool_>(value)) refuse("is a switch: give True or False");
+    return;
+  }
+  double number = 0.0;
+  if (nb::isinstance<nb::bool_>(value) || !nb::try_cast(value, number)) refuse("must be a number");
+  const std::string error = gr::parameter_value_error(*row, number);
+  if (!error.empty()) refuse(error);
+}
+
 }  // namespace
 
 NB_MODULE(_core, m) {
@@ -166,6 +211,10 @@ NB_MODULE(_core, m) {
   for (const gr::OutcomeRow& row : gr::outcome_table())
     outcomes[nb::int_(row.exit_code)] = row.name;
   m.attr("outcome_names") = outcomes;
+  m.def("parameters", &parameters,
+        "Every knob a run may set: name, option (the keyword), type, unit, help, presets.");
+  m.def("check_parameter", &check_parameter, nb::arg("keyword"), nb::arg("value"),
+        "Raises UsageError when `value` is not valid for the knob `keyword`.");
   m.def("run_command", &run_command, nb::arg("arguments"),
         "Runs `garment-retarget ARGUMENTS...` in this process and returns its exit code.");
   m.def("read_mesh", &read_mesh, nb::arg("path"),

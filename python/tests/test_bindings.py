@@ -47,6 +47,23 @@ def test_errors_are_exceptions_with_the_command_line_messages(scene, tmp_path):
     assert issubclass(gr.InputError, ValueError) and issubclass(gr.OutputError, OSError)
 
 
+def test_knobs_are_checked_against_the_parameter_table_before_the_run(scene, tmp_path):
+    knobs = {row["option"]: row for row in gr.parameters()}
+    assert knobs["w_fit"]["name"] == "w_fit" and knobs["w_fit"]["type"] == "real"
+    assert knobs["fit_samples"]["presets"] == {"fast": 1, "balanced": 3, "accurate": 6}
+    assert knobs["pullback"]["name"] == "skeleton_pullback"
+    with pytest.raises(gr.UsageError, match="fit_samples must be 1, 3 or 6"):
+        gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "a", fit_samples=4)
+    with pytest.raises(gr.UsageError, match="max_al_rounds must be a whole number"):
+        gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "b", max_al_rounds=2.5)
+    with pytest.raises(gr.UsageError, match="dhat must be a number"):
+        gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "c", dhat="thin")
+    with pytest.raises(gr.UsageError, match="no_self_contact is a switch"):
+        gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "d", no_self_contact=1)
+    # Refused before anything ran: no folder was made.
+    assert not any((tmp_path / name).exists() for name in "abcd")
+
+
 def test_validate_reports_intersections(scene):
     intersecting = gr.validate(scene / "garment.obj", scene / "avatar.obj")
     assert intersecting["exit_code"] == 1
