@@ -173,7 +173,8 @@ nb::list parameters() {
     d["unit"] = row.unit;
     d["help"] = row.help;
     nb::dict presets;
-    for (const gr::Quality quality : {gr::Quality::kFast, gr::Quality::kBalanced, gr::Quality::kAccurate})
+    for (const gr::Quality quality :
+         {gr::Quality::kFast, gr::Quality::kBalanced, gr::Quality::kAccurate})
       presets[gr::to_string(quality)] = row.get(gr::parameters_for_quality(quality));
     d["presets"] = presets;
     rows.append(d);
