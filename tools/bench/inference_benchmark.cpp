@@ -71,16 +71,7 @@ std::string binding_rows(const std::string& shared) {
   return rows;
 }
 
-std::string exit_name(gr::Outcome status) {
-  switch (status) {
-    case gr::Outcome::kCertified: return "0";
-    case gr::Outcome::kNotCertified: return "1";
-    case gr::Outcome::kNoValidShrink: return "3";
-    case gr::Outcome::kSolverFailure: return "4";
-    case gr::Outcome::kShapeChanged: return "7";
-  }
-  return "?";
-}
+std::string exit_name(gr::Outcome status) { return std::to_string(gr::to_exit_code(status)); }
 
 /// The retarget of `pairing` with `inputs`, measured on the hand-made list's faces.
 std::string retarget_row(const Pairing& pairing, const Inputs& inputs, const std::string& shared,

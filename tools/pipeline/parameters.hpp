@@ -39,7 +39,7 @@ struct ParameterRange {
   double min = 0.0;
   bool min_exclusive = false;
   double max = 1e300;
-  std::vector<double> choices;
+  std::vector<double> choices{};
 };
 
 /// One knob of a retarget run, declared once: the command line's option, report.json's

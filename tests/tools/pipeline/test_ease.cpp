@@ -132,7 +132,7 @@ TEST_CASE("With its source body the skirt keeps its ease; the tight fit paints i
   CHECK(kept["measured_vertices"].get<int>() > 500);
   CHECK(kept["median_ratio"].get<double>() == Approx(1.0).margin(0.25));
   CHECK(kept["within_25_percent"].get<double>() >= 0.5);
-  CHECK(kept["per_vertex_ratio"].size() ==
+  CHECK(static_cast<Eigen::Index>(kept["per_vertex_ratio"].size()) ==
         read_obj(test::shared_data("garments/skirt/garment.obj")).positions.rows());
 
   const test::CliRun tight =
