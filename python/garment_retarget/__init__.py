@@ -19,18 +19,23 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-from ._core import (InputError, OutputError, UsageError, check_parameter, outcome_names, parameters, read_mesh,
-                    run_command, version)
+from ._core import (InputError, Outcome, OutputError, RetargetOptions, RetargetResult, UsageError, outcome_names,
+                    parameters, read_mesh, run_command, run_retarget, version)
 
 __all__ = [
     "InputError",
+    "Outcome",
     "OutputError",
+    "RetargetOptions",
+    "RetargetResult",
     "UsageError",
     "batch",
     "parameters",
     "program_path",
     "read_mesh",
     "retarget",
+    "retarget_options",
+    "run_retarget",
     "shrink",
     "validate",
     "version",
@@ -118,9 +123,6 @@ def _scene_command(command: str, garment: Any, avatar: Any, out: str | os.PathLi
     """Runs COMMAND --garment G --avatar A --out DIR with `options` (``quiet`` by default);
     returns the exit code, what ``outputs(DIR, exit_code)`` reads and ``out``."""
     options.setdefault("quiet", True)
-    if command == "retarget":
-        for keyword, value in options.items():
-            check_parameter(keyword, value)
     with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
         arguments = [command, "--garment", _mesh_file(garment, inputs, "garment"),
                      "--avatar", _mesh_file(avatar, inputs, "avatar"), "--out", folder]
@@ -128,27 +130,55 @@ def _scene_command(command: str, garment: Any, avatar: Any, out: str | os.PathLi
         return {"exit_code": exit_code, **outputs(folder, exit_code), "out": None if out is None else folder}
 
 
+def _json_value(value: Any) -> Any:
+    """A keyword's value as JSON: paths as text, sequences as arrays, NumPy scalars as numbers."""
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if isinstance(value, (list, tuple)):
+        return [_json_value(item) for item in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def retarget_options(**options: Any) -> RetargetOptions:
+    """Typed, checked ``retarget`` options from keywords by long name (``garment=``,
+    ``source_skeleton=``, ``quality="fast"``, ``w_fit=10``, ``skirt=True``; None or False
+    leaves one out). Each value goes through the command's own option and its checks;
+    ``garment``, ``avatar`` and ``out`` are required. Raises ``UsageError`` naming the
+    option."""
+    keys = {key: _json_value(value) for key, value in options.items() if value is not None}
+    return RetargetOptions.from_json(json.dumps(keys))
+
+
 def retarget(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **options: Any) -> dict:
-    """Refits `garment` onto `avatar` (``garment-retarget retarget``).
+    """Refits `garment` onto `avatar` (``garment-retarget retarget``), in this process.
 
     Options are the command's long options by name (``source_skeleton=``, ``skirt=True``,
-    ``quality="fast"``, ``w_fit=10``...); ``quiet`` defaults to True. Without `out` the
-    outputs go to a temporary folder that is removed once read.
+    ``quality="fast"``, ``w_fit=10``...), made into typed options by `retarget_options`;
+    ``quiet`` defaults to True. Without `out` the outputs go to a temporary folder that is
+    removed once read.
 
     Returns a dict: ``exit_code`` and ``status`` (certified, not_certified, no_valid_shrink,
-    solver_failure or shape_changed), ``report`` (report.json) and ``certificate``
-    (certificate.json) as dicts, ``garment`` as (V, F) arrays in the input OBJ's vertex
-    order (None when nothing was written), and ``out`` (None for a temporary folder).
+    solver_failure, shape_changed or limit_reached), ``message``, ``report`` (report.json)
+    and ``certificate`` (certificate.json) as dicts, ``garment`` as (V, F) arrays in the
+    input OBJ's vertex order (None when nothing was written), and ``out`` (None for a
+    temporary folder).
     """
-    def outputs(folder: str, exit_code: int) -> dict:
+    options.setdefault("quiet", True)
+    with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
+        typed = retarget_options(garment=_mesh_file(garment, inputs, "garment"),
+                                 avatar=_mesh_file(avatar, inputs, "avatar"), out=folder, **options)
+        result = run_retarget(typed)
         return {
-            "status": STATUS_BY_EXIT_CODE.get(exit_code, "failed"),
+            "exit_code": result.exit_code,
+            "status": result.status_name,
+            "message": result.message,
             "report": _read_json(os.path.join(folder, "report.json")),
             "certificate": _read_json(os.path.join(folder, "certificate.json")),
             "garment": _read_mesh_if_present(os.path.join(folder, "garment.obj")),
+            "out": None if out is None else folder,
         }
-
-    return _scene_command("retarget", garment, avatar, out, options, outputs)
 
 
 def validate(garments: Any, avatar: Any, sources: Iterable[Any] | None = None, **options: Any) -> dict:

@@ -20,6 +20,7 @@
 #include "tools/cli/commands.hpp"
 #include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/parameters.hpp"
+#include "tools/pipeline/retarget.hpp"
 #include "tools/pipeline/run_control.hpp"
 
 namespace nb = nanobind;
@@ -182,22 +183,24 @@ nb::list parameters() {
   return rows;
 }
 
-/// Checks a knob's keyword value against its row, as the command line would: raises
-/// UsageError naming the keyword. Keywords that are not knobs pass.
-void check_parameter(const std::string& keyword, nb::handle value) {
-  const gr::ParameterRow* row = gr::find_parameter_option(keyword);
-  if (row == nullptr) return;
-  const auto refuse = [&](const std::string& why) {
-    throw CLI::ValidationError(keyword, keyword + " " + why);
-  };
-  if (row->type == gr::ParameterType::kSwitch) {
-    if (!nb::isinstance<nb::bool_>(value)) refuse("is a switch: give True or False");
-    return;
+/// Runs the retarget pipeline on typed options in this process, without the GIL; Ctrl-C
+/// and SIGTERM stop it (KeyboardInterrupt). A run stopped by its limits returns
+/// Outcome::kLimitReached with the reason as its message.
+gr::RetargetResult run_retarget(const gr::RetargetOptions& options) {
+  gr::RetargetResult result;
+  try {
+    const SignalsStopRuns signals;
+    const nb::gil_scoped_release unlocked;
+    result = gr::run_retarget(options);
+  } catch (const gr::RunStopped& stopped) {
+    if (gr::report_stopped_run(stopped) == gr::to_exit_code(gr::Outcome::kInterrupted)) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw nb::python_error();
+    }
+    result.status = gr::Outcome::kLimitReached;
+    result.message = stopped.what();
   }
-  double number = 0.0;
-  if (nb::isinstance<nb::bool_>(value) || !nb::try_cast(value, number)) refuse("must be a number");
-  const std::string error = gr::parameter_value_error(*row, number);
-  if (!error.empty()) refuse(error);
+  return result;
 }
 
 }  // namespace
@@ -214,8 +217,36 @@ NB_MODULE(_core, m) {
   m.attr("outcome_names") = outcomes;
   m.def("parameters", &parameters,
         "Every knob a run may set: name, option (the keyword), type, unit, help, presets.");
-  m.def("check_parameter", &check_parameter, nb::arg("keyword"), nb::arg("value"),
-        "Raises UsageError when `value` is not valid for the knob `keyword`.");
+  nb::enum_<gr::Outcome> outcome(m, "Outcome", "How a command ends; each value is its exit code.");
+  for (const gr::OutcomeRow& row : gr::outcome_table()) outcome.value(row.name, row.outcome);
+  nb::class_<gr::RetargetOptions>(m, "RetargetOptions",
+                                  "Everything retarget can be asked, typed and checked.")
+      .def_static(
+          "from_json",
+          [](const std::string& text) {
+            return gr::retarget_options_from_json(nlohmann::json::parse(text));
+          },
+          nb::arg("text"),
+          "The options from a JSON object of retarget's long option names ('_' or '-'): "
+          "flags as booleans, repeatable options as arrays.")
+      .def_ro("out_dir", &gr::RetargetOptions::out_dir)
+      .def_ro("threads", &gr::RetargetOptions::threads)
+      .def_ro("quiet", &gr::RetargetOptions::quiet)
+      .def_prop_ro("garment", [](const gr::RetargetOptions& o) { return o.inputs.garment; })
+      .def_prop_ro("avatar", [](const gr::RetargetOptions& o) { return o.inputs.avatar; })
+      .def_prop_ro("quality",
+                   [](const gr::RetargetOptions& o) { return gr::to_string(o.quality); });
+  nb::class_<gr::RetargetResult>(m, "RetargetResult", "How a retarget run ended.")
+      .def_ro("status", &gr::RetargetResult::status)
+      .def_prop_ro("exit_code",
+                   [](const gr::RetargetResult& r) { return gr::to_exit_code(r.status); })
+      .def_prop_ro("status_name",
+                   [](const gr::RetargetResult& r) { return gr::to_string(r.status); })
+      .def_ro("garment_path", &gr::RetargetResult::garment_path)
+      .def_ro("report_path", &gr::RetargetResult::report_path)
+      .def_ro("message", &gr::RetargetResult::message);
+  m.def("run_retarget", &run_retarget, nb::arg("options"),
+        "Runs retarget on typed options in this process and returns its RetargetResult.");
   m.def("run_command", &run_command, nb::arg("arguments"),
         "Runs `garment-retarget ARGUMENTS...` in this process and returns its exit code.");
   m.def("read_mesh", &read_mesh, nb::arg("path"),

@@ -47,18 +47,34 @@ def test_errors_are_exceptions_with_the_command_line_messages(scene, tmp_path):
     assert issubclass(gr.InputError, ValueError) and issubclass(gr.OutputError, OSError)
 
 
+def test_typed_options_and_result(scene, tmp_path):
+    options = gr.retarget_options(garment=scene / "garment.obj", avatar=scene / "avatar.obj",
+                                  out=tmp_path / "typed", quality="fast", threads=np.int64(1),
+                                  no_fit=scene / "no-fit.txt", skirt=False)
+    assert isinstance(options, gr.RetargetOptions)
+    assert options.quality == "fast" and options.threads == 1 and options.quiet is False
+    assert options.garment == str(scene / "garment.obj")
+    result = gr.run_retarget(options)
+    assert isinstance(result, gr.RetargetResult)
+    assert result.status == gr.Outcome.certified and result.exit_code == 0
+    assert result.garment_path == str(tmp_path / "typed" / "garment.obj")
+    assert result.message.startswith("certified")
+    with pytest.raises(gr.UsageError, match="--out"):
+        gr.retarget_options(garment=scene / "garment.obj", avatar=scene / "avatar.obj")
+
+
 def test_knobs_are_checked_against_the_parameter_table_before_the_run(scene, tmp_path):
     knobs = {row["option"]: row for row in gr.parameters()}
     assert knobs["w_fit"]["name"] == "w_fit" and knobs["w_fit"]["type"] == "real"
     assert knobs["fit_samples"]["presets"] == {"fast": 1, "balanced": 3, "accurate": 6}
     assert knobs["pullback"]["name"] == "skeleton_pullback"
-    with pytest.raises(gr.UsageError, match="fit_samples must be 1, 3 or 6"):
+    with pytest.raises(gr.UsageError, match="--fit-samples: must be 1, 3 or 6"):
         gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "a", fit_samples=4)
-    with pytest.raises(gr.UsageError, match="max_al_rounds must be a whole number"):
+    with pytest.raises(gr.UsageError, match="--max-al-rounds: must be a whole number"):
         gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "b", max_al_rounds=2.5)
-    with pytest.raises(gr.UsageError, match="dhat must be a number"):
+    with pytest.raises(gr.UsageError, match="--dhat: not a number: thin"):
         gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "c", dhat="thin")
-    with pytest.raises(gr.UsageError, match="no_self_contact is a switch"):
+    with pytest.raises(gr.UsageError, match="--no-self-contact: a flag"):
         gr.retarget(scene / "garment.obj", scene / "avatar.obj", out=tmp_path / "d", no_self_contact=1)
     # Refused before anything ran: no folder was made.
     assert not any((tmp_path / name).exists() for name in "abcd")

@@ -8,7 +8,7 @@
 #include "tools/batch/batch_run.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/pipeline/outcome.hpp"
-#include "tools/pipeline/parameters.hpp"
+#include "tools/pipeline/retarget.hpp"
 
 namespace gr {
 
@@ -39,15 +39,16 @@ void check_batch_options(const std::string& manifest, const std::vector<BatchJob
         throw InputError(manifest, job.line,
                          flag ? fmt::format("\"{}\" is a flag: give true or false", name)
                               : fmt::format("\"{}\" needs a value, not a boolean", name));
-      // A knob's value is checked here, against its row, so that the job is refused before
-      // any job runs.
-      const ParameterRow* knob = find_parameter_option(name);
-      if (knob == nullptr || knob->type == ParameterType::kSwitch) continue;
-      if (!value.is_number())
-        throw InputError(manifest, job.line, fmt::format("\"{}\" must be a number", name));
-      const std::string error = parameter_value_error(*knob, value.get<double>());
-      if (!error.empty())
-        throw InputError(manifest, job.line, fmt::format("\"{}\" {}", name, error));
+    }
+    // The whole line parsed into typed options, so that every value is checked before any
+    // job runs (the batch sets the output folder itself).
+    nlohmann::json line = job.options;
+    for (const auto& [key, path] : job.inputs) line[key] = path;
+    line["out"] = job.id;
+    try {
+      retarget_options_from_json(line);
+    } catch (const CLI::ParseError& e) {
+      throw InputError(manifest, job.line, e.what());
     }
   }
 }

@@ -5,10 +5,12 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 namespace gr {
 
 struct BatchJob;
+struct RetargetOptions;
 struct ScenePaths;
 struct ShapeThresholds;
 struct InferenceOptions;
@@ -46,6 +48,13 @@ void add_retarget_command(CLI::App& root, int& exit_code);
 void add_validate_command(CLI::App& root, int& exit_code);
 void add_shrink_command(CLI::App& root, int& exit_code);
 void add_batch_command(CLI::App& root, int& exit_code);
+
+/// Retarget's options from typed values, by their long names ('_' or '-' between words):
+/// a flag is a boolean (false leaves it out), a repeatable option takes an array, any
+/// other a number or a text. Each value goes through its command-line option's own
+/// conversion and checks; garment, avatar and out are required.
+/// @throw CLI::ParseError (a UsageError in Python) naming the option.
+RetargetOptions retarget_options_from_json(const nlohmann::json& object);
 
 /// Checks that each manifest option of `jobs` names a retarget option, a flag given as a
 /// boolean and any other option given a value.

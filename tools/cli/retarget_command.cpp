@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <string>
 
 #include "tools/cli/commands.hpp"
 #include "tools/pipeline/outcome.hpp"
@@ -7,12 +9,33 @@
 
 namespace gr {
 
-void add_retarget_command(CLI::App& root, int& exit_code) {
-  auto options = std::make_shared<RetargetOptions>();
-  // Named on the command line, parsed into the typed options when the command runs.
-  auto shrink_mode = std::make_shared<std::string>();
-  auto quality = std::make_shared<std::string>(to_string(options->quality));
-  auto fit_mode = std::make_shared<std::string>();
+namespace {
+
+/// The retarget command's options as its CLI11 options set them: the named choices stay
+/// text until typed() parses them.
+struct RetargetBinding {
+  RetargetOptions options;
+  std::string shrink_mode;
+  std::string quality = to_string(Quality::kBalanced);
+  std::string fit_mode;
+
+  RetargetOptions typed() const {
+    RetargetOptions typed_options = options;
+    if (!shrink_mode.empty()) typed_options.shrink_mode = parse_shrink_mode(shrink_mode);
+    if (!fit_mode.empty()) typed_options.fit_mode = parse_fit_mode(fit_mode);
+    typed_options.quality = parse_quality(quality);
+    return typed_options;
+  }
+};
+
+/// Registers the retarget subcommand on `root` with every option bound to `binding`: the
+/// one declaration of retarget's options, which the command line and the typed front
+/// ends (retarget_options_from_json) both use.
+CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
+  RetargetOptions* options = &binding.options;
+  std::string* shrink_mode = &binding.shrink_mode;
+  std::string* quality = &binding.quality;
+  std::string* fit_mode = &binding.fit_mode;
   CLI::App* cmd = root.add_subcommand(
       "retarget", "Refit a garment onto an avatar, then certify the written garment.");
   add_scene_options(*cmd, options->inputs, options->out_dir);
@@ -94,13 +117,18 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
       "4 solver failure, 5 output not writable, 6 internal error, 7 certified and written\n"
       "but the garment's shape changed beyond the shape thresholds, 9 --timeout or\n"
       "--max-memory-mb reached, 10 interrupted (Ctrl-C, SIGTERM).");
-  cmd->callback([options, shrink_mode, quality, fit_mode, &exit_code]() {
-    if (!shrink_mode->empty()) options->shrink_mode = parse_shrink_mode(*shrink_mode);
-    if (!fit_mode->empty()) options->fit_mode = parse_fit_mode(*fit_mode);
-    options->quality = parse_quality(*quality);
+  return cmd;
+}
+
+}  // namespace
+
+void add_retarget_command(CLI::App& root, int& exit_code) {
+  auto binding = std::make_shared<RetargetBinding>();
+  CLI::App* cmd = add_retarget_options(root, *binding);
+  cmd->callback([binding, &exit_code]() {
     RetargetResult result;
     try {
-      result = run_retarget(*options);
+      result = run_retarget(binding->typed());
     } catch (const RunStopped& stopped) {
       exit_code = report_stopped_run(stopped);
       return;
@@ -109,6 +137,45 @@ void add_retarget_command(CLI::App& root, int& exit_code) {
     if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());
     exit_code = to_exit_code(result.status);
   });
+}
+
+RetargetOptions retarget_options_from_json(const nlohmann::json& object) {
+  if (!object.is_object()) throw CLI::ValidationError("retarget options", "must be an object");
+  CLI::App root;
+  RetargetBinding binding;
+  CLI::App* cmd = add_retarget_options(root, binding);
+  for (const auto& [key, value] : object.items()) {
+    std::string name = "--" + key;
+    std::replace(name.begin(), name.end(), '_', '-');
+    CLI::Option* option = cmd->get_option_no_throw(name);
+    if (option == nullptr || name == "--help")
+      throw CLI::ValidationError(name,
+                                 "not a retarget option (see garment-retarget retarget --help)");
+    if (option->get_expected_max() == 0) {
+      if (!value.is_boolean()) throw CLI::ValidationError(name, "a flag: give true or false");
+      if (!value.get<bool>()) continue;  // a flag left out
+      option->add_result(option->get_flag_value(name, ""));
+    } else {
+      const auto add = [&](const nlohmann::json& item) {
+        if (item.is_string())
+          option->add_result(item.get<std::string>());
+        else if (item.is_number())
+          option->add_result(item.dump());
+        else
+          throw CLI::ValidationError(name, "needs a number or a text");
+      };
+      if (value.is_array()) {
+        for (const nlohmann::json& item : value) add(item);
+      } else {
+        add(value);
+      }
+    }
+    option->run_callback();
+  }
+  for (const CLI::Option* option : cmd->get_options())
+    if (option->get_required() && option->count() == 0)
+      throw CLI::RequiredError(option->get_name());
+  return binding.typed();
 }
 
 }  // namespace gr

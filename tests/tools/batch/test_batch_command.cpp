@@ -115,18 +115,27 @@ TEST_CASE("batch refuses a manifest naming an option retarget does not have", "[
   CHECK_FALSE(fs::exists(dir / "out" / "a"));
 }
 
-TEST_CASE("batch refuses a knob outside its range before any job runs", "[batch][cli]") {
+TEST_CASE("batch refuses a value its option does not take before any job runs", "[batch][cli]") {
   const fs::path dir = gr::test::fresh_temp_dir("batch_bad_knob");
   std::ofstream(dir / "manifest.jsonl")
       << "{\"id\": \"a\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\"}\n"
-      << "{\"id\": \"b\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\", \"fit_samples\": 4}\n";
+      << "{\"id\": \"b\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\", \"fit_samples\": 4}\n"
+      << "{\"id\": \"c\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\", \"quality\": \"best\"}\n";
   const gr::test::CliRun run =
       run_cli({"batch", (dir / "manifest.jsonl").string(), "--out", (dir / "out").string()},
               "batch_bad_knob");
   CHECK(run.exit_code == 2);
   CHECK_THAT(run.err, Catch::Contains("manifest.jsonl:2") &&
-                          Catch::Contains("\"fit-samples\" must be 1, 3 or 6"));
+                          Catch::Contains("--fit-samples: must be 1, 3 or 6"));
   CHECK_FALSE(fs::exists(dir / "out" / "a"));
+  // The first bad line stops the batch; the next one is refused on its own as well.
+  std::ofstream(dir / "quality.jsonl")
+      << "{\"id\": \"c\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\", \"quality\": \"best\"}\n";
+  const gr::test::CliRun quality =
+      run_cli({"batch", (dir / "quality.jsonl").string(), "--out", (dir / "out").string()},
+              "batch_bad_quality");
+  CHECK(quality.exit_code == 2);
+  CHECK_THAT(quality.err, Catch::Contains("quality.jsonl:1") && Catch::Contains("best"));
 }
 
 TEST_CASE("batch records a job whose process crashes and goes on", "[batch][cli]") {
