@@ -32,6 +32,8 @@ namespace {
 constexpr const char* kTemporaryPrefix = ".tmp-";
 constexpr const char* kJobFile = "job.json";
 constexpr const char* kLogFile = "log.txt";
+/// Beside a job's temporary folder while it runs: its typed options (job_options).
+constexpr const char* kOptionsSuffix = ".options.json";
 
 /// Runs `arguments` in `folder` (the child's working folder) with its output in `log_path`.
 /// Returns the exit status of the child, or -1 when a signal ended it (its number in
@@ -160,14 +162,15 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
   prepare_output_folder(runner.out_dir);
   const fs::path folder = temporary_folder(out, job.id);
   prepare_output_folder(folder.string());
-  std::vector<std::string> arguments = {fs::absolute(runner.program).string(), "retarget"};
-  for (std::string& argument : retarget_arguments(job)) arguments.push_back(std::move(argument));
-  // The job runs inside its folder and writes to ".": the paths its reports record are the
+  // The job's typed options, as the batch parsed them from its line, beside its folder. The
+  // job runs inside its folder and writes to ".": the paths its reports record are the
   // same wherever and under whichever temporary name it ran.
-  for (const std::string& argument :
-       {std::string("--out"), std::string("."), std::string("--write-in-place"),
-        std::string("--threads"), std::to_string(std::max(1, runner.threads))})
-    arguments.push_back(argument);
+  const fs::path options_path = folder.string() + kOptionsSuffix;
+  write_file_atomically(options_path.string(), [&](std::ostream& file) {
+    file << job_options(job, std::max(1, runner.threads)).dump(2) << '\n';
+  });
+  const std::vector<std::string> arguments = {fs::absolute(runner.program).string(), "run-job",
+                                              fs::absolute(options_path).string()};
 
   const Stopwatch clock;
   int signal_number = 0;
@@ -176,6 +179,8 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
   outcome.id = job.id;
   outcome.exit_code = run_child(arguments, folder.string(), log_path, signal_number);
   outcome.seconds = clock.seconds();
+  std::error_code ignored;
+  fs::remove(options_path, ignored);
   outcome.status = status_for_exit_code(outcome.exit_code);
   if (outcome.exit_code == -1)
     outcome.error =

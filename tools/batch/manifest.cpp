@@ -28,11 +28,6 @@ std::string option_name(std::string key) {
   return key;
 }
 
-/// An option value as the command line spells it; numbers keep JSON's shortest form.
-std::string argument_text(const nlohmann::json& value) {
-  return value.is_string() ? value.get<std::string>() : value.dump();
-}
-
 BatchJob parse_job(const std::string& manifest, std::size_t line_number, const std::string& text,
                    const fs::path& folder) {
   const auto fail = [&](const std::string& message) {
@@ -117,21 +112,13 @@ std::vector<BatchJob> read_manifest(const std::string& manifest_path) {
   return jobs;
 }
 
-std::vector<std::string> retarget_arguments(const BatchJob& job) {
-  std::vector<std::string> arguments;
-  for (const auto& [key, path] : job.inputs) {
-    arguments.push_back("--" + option_name(key));
-    arguments.push_back(path);
-  }
-  for (const auto& [name, value] : job.options.items()) {
-    if (value.is_boolean()) {
-      if (value.get<bool>()) arguments.push_back("--" + name);
-      continue;
-    }
-    arguments.push_back("--" + name);
-    arguments.push_back(argument_text(value));
-  }
-  return arguments;
+nlohmann::json job_options(const BatchJob& job, int threads) {
+  nlohmann::json options = job.options;
+  for (const auto& [key, path] : job.inputs) options[key] = path;
+  options["out"] = ".";
+  options["write-in-place"] = true;
+  options["threads"] = threads;
+  return options;
 }
 
 std::string job_key(const BatchJob& job) {

@@ -35,9 +35,10 @@ const std::vector<std::string>& batch_reserved_options();
 ///        duplicate ids, missing keys and values of the wrong type.
 std::vector<BatchJob> read_manifest(const std::string& manifest_path);
 
-/// The retarget command-line arguments of `job` after the command name, without --out,
-/// --threads and --quiet: each input as --key PATH, then each option.
-std::vector<std::string> retarget_arguments(const BatchJob& job);
+/// The job's retarget options as typed values by long name, as `garment-retarget run-job`
+/// reads them (retarget_options_from_json): each input key with its resolved path, each
+/// option, and the batch's own: out ".", write-in-place and `threads`.
+nlohmann::json job_options(const BatchJob& job, int threads);
 
 /// The job's skip key: SHA-256 over the program version, the SHA-256 of each input file's
 /// bytes and the options, so a renamed or moved input keeps it and an edited one does not.

@@ -42,11 +42,8 @@ void check_batch_options(const std::string& manifest, const std::vector<BatchJob
     }
     // The whole line parsed into typed options, so that every value is checked before any
     // job runs (the batch sets the output folder itself).
-    nlohmann::json line = job.options;
-    for (const auto& [key, path] : job.inputs) line[key] = path;
-    line["out"] = job.id;
     try {
-      retarget_options_from_json(line);
+      retarget_options_from_json(job_options(job, 1));
     } catch (const CLI::ParseError& e) {
       throw InputError(manifest, job.line, e.what());
     }

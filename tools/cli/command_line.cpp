@@ -22,6 +22,7 @@ std::unique_ptr<CLI::App> make_command_line(int& exit_code) {
   add_validate_command(*app, exit_code);
   add_shrink_command(*app, exit_code);
   add_batch_command(*app, exit_code);
+  add_run_job_command(*app, exit_code);
   return app;
 }
 

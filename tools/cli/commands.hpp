@@ -48,6 +48,9 @@ void add_retarget_command(CLI::App& root, int& exit_code);
 void add_validate_command(CLI::App& root, int& exit_code);
 void add_shrink_command(CLI::App& root, int& exit_code);
 void add_batch_command(CLI::App& root, int& exit_code);
+/// `run-job FILE`: retarget with the typed options of a JSON file (retarget_options_from_json),
+/// as the batch runs each job; not listed in --help.
+void add_run_job_command(CLI::App& root, int& exit_code);
 
 /// Retarget's options from typed values, by their long names ('_' or '-' between words):
 /// a flag is a boolean (false leaves it out), a repeatable option takes an array, any

@@ -1,8 +1,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
 #include <string>
 
+#include "core/common/errors.hpp"
 #include "tools/cli/commands.hpp"
 #include "tools/pipeline/outcome.hpp"
 #include "tools/pipeline/retarget.hpp"
@@ -120,22 +122,43 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
   return cmd;
 }
 
+/// Runs the pipeline on `options` and prints its summary; returns the exit code.
+int retarget_and_print(const RetargetOptions& options) {
+  RetargetResult result;
+  try {
+    result = run_retarget(options);
+  } catch (const RunStopped& stopped) {
+    return report_stopped_run(stopped);
+  }
+  std::printf("%s\n", result.message.c_str());
+  if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());
+  return to_exit_code(result.status);
+}
+
 }  // namespace
 
 void add_retarget_command(CLI::App& root, int& exit_code) {
   auto binding = std::make_shared<RetargetBinding>();
   CLI::App* cmd = add_retarget_options(root, *binding);
-  cmd->callback([binding, &exit_code]() {
-    RetargetResult result;
+  cmd->callback([binding, &exit_code]() { exit_code = retarget_and_print(binding->typed()); });
+}
+
+void add_run_job_command(CLI::App& root, int& exit_code) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* cmd = root.add_subcommand(
+      "run-job", "One batch job: retarget with the typed options of a JSON file");
+  cmd->group("");  // the batch's own: not listed in --help
+  cmd->add_option("options", *path, "JSON object of retarget options by long name")->required();
+  cmd->callback([path, &exit_code]() {
+    std::ifstream in(*path);
+    if (!in) throw InputError(*path, 0, "cannot open the job's options");
+    nlohmann::json object;
     try {
-      result = run_retarget(binding->typed());
-    } catch (const RunStopped& stopped) {
-      exit_code = report_stopped_run(stopped);
-      return;
+      object = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(*path, 0, std::string("not a JSON object: ") + e.what());
     }
-    std::printf("%s\n", result.message.c_str());
-    if (!result.garment_path.empty()) std::printf("garment: %s\n", result.garment_path.c_str());
-    exit_code = to_exit_code(result.status);
+    exit_code = retarget_and_print(retarget_options_from_json(object));
   });
 }
 

@@ -40,20 +40,17 @@ TEST_CASE("read_manifest resolves paths against the manifest's folder and names 
   CHECK(jobs[0].id == "a");
   CHECK(jobs[0].line == 1);
   CHECK(jobs[1].line == 3);
-  const std::vector<std::string> expected = {"--avatar",
-                                             "/abs/a.obj",
-                                             "--garment",
-                                             (folder / "g.obj").string(),
-                                             "--no-fit",
-                                             (folder / "sub/n.txt").string(),
-                                             "--quality",
-                                             "fast",
-                                             "--shape-check",
-                                             "off",
-                                             "--skirt",
-                                             "--w-fit",
-                                             "10"};
-  CHECK(gr::retarget_arguments(jobs[0]) == expected);
+  const nlohmann::json expected = {{"avatar", "/abs/a.obj"},
+                                   {"garment", (folder / "g.obj").string()},
+                                   {"no_fit", (folder / "sub/n.txt").string()},
+                                   {"quality", "fast"},
+                                   {"shape-check", "off"},
+                                   {"skirt", true},
+                                   {"w-fit", 10},
+                                   {"out", "."},
+                                   {"write-in-place", true},
+                                   {"threads", 2}};
+  CHECK(gr::job_options(jobs[0], 2) == expected);
   // A flag set to false is left out: the job is the same as without it.
   CHECK(jobs[1].options.empty());
 }

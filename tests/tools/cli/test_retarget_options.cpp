@@ -9,9 +9,7 @@ namespace gr {
 
 namespace {
 
-nlohmann::json scene_keys() {
-  return {{"garment", "g.obj"}, {"avatar", "a.obj"}, {"out", "out"}};
-}
+nlohmann::json scene_keys() { return {{"garment", "g.obj"}, {"avatar", "a.obj"}, {"out", "out"}}; }
 
 }  // namespace
 
