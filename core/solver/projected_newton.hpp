@@ -59,9 +59,9 @@ struct NewtonOptions {
   /// The floor of mu: the relative perturbation of H that every step keeps. At 1e-8 the
   /// scaled system's condition number stays below about 1e10 (a few dozen nonzeros per row
   /// over 1e-8), so rounding moves the step by about 1e-6 of itself, continuously, and the
-  /// converged point is unaffected (the damping vanishes with the gradient). A floor of
-  /// 1e-6 changed which way the goblin's collar went around the head (caught, 661
-  /// inflation steps); 1e-8 follows the undamped path (228 steps).
+  /// converged point is unaffected (the damping vanishes with the gradient). A higher floor
+  /// can steer the path away from the undamped one (tools/bench/results/
+  /// parameter_choices.md).
   double min_damping = 1e-8;
   double max_damping = 1e12;
   /// LinearSolver::set_pattern_slack: Hessian entries outside the analysed pattern that
