@@ -29,7 +29,7 @@ struct CertifyInput {
 struct CertifyOptions {
   ShapeThresholds shape_thresholds;  ///< as given; with skeletons only edge changes apply
   Quality quality = Quality::kBalanced;
-  double dhat = 0.002;  ///< the ease measure's smallest ease (normalized)
+  double dhat = RetargetParameters{}.dhat;  ///< the ease measure's smallest ease (normalized)
 };
 
 struct CertifyOutput {

@@ -24,7 +24,8 @@ struct InferOptions {
   bool skirt = false;
   std::optional<FitMode> fit_mode;  ///< unset: ease with a source body, else tight
   std::string out_dir;              ///< where an inferred no-fit list is written
-  double voxel_size = 0.01;         ///< the fit's grid spacing (normalized units)
+  double voxel_size =
+      PipelineParameters{}.voxel_size;  ///< the fit's grid spacing (normalized units)
 };
 
 struct InferOutput {

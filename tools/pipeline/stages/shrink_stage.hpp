@@ -21,10 +21,11 @@ struct ShrinkInput {
 
 struct ShrinkOptions {
   ShrinkMode mode = ShrinkMode::kLevelset;
-  double voxel_size = 0.01;  ///< signed-distance grid spacing (normalized units)
+  double voxel_size =
+      PipelineParameters{}.voxel_size;  ///< signed-distance grid spacing (normalized units)
   /// How far outside the avatar the grid holds distances (the fit reads them there).
   double distance_band = kDistanceBand;
-  double pullback = 0.25;  ///< skeleton: the first pullback tried
+  double pullback = SkeletonShrinkOptions{}.pullback;  ///< skeleton: the first pullback tried
   /// Faces the avatar passes through as given leave the avatar contact (see run_shrink);
   /// false: such a garment has no valid shrink.
   bool open_pierced_faces = true;

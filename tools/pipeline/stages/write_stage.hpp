@@ -28,7 +28,8 @@ struct WriteOptions {
   std::string format;  ///< "obj" or "glb"; empty: the garment's input format
   bool allow_external_assets = false;
   SkinTransferOptions skin_transfer;
-  double dhat = 0.002;  ///< pierced faces this close to the avatar are opened (normalized)
+  double dhat = RetargetParameters{}
+                    .dhat;  ///< pierced faces this close to the avatar are opened (normalized)
 };
 
 struct WriteOutput {
