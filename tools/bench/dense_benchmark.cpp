@@ -1,0 +1,181 @@
+// Dense garments: the shared skirt and puffer retargeted at 1×, 4×, 16×... their faces (each
+// level one midpoint subdivision, the no-fit list carried: a midpoint is listed when both
+// ends of its edge are). Per level the wall and CPU time, Newton steps, peak memory, shape,
+// fit error and certificate, and each as a ratio to the 1× run of the same scene, as a
+// Markdown table on stdout and results.csv in --out (tools/bench/plot_dense.py plots it).
+// Each run's peak resident memory is its own: the process's high-water mark (VmHWM) is
+// reset before it (/proc/self/clear_refs).
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include "core/common/stopwatch.hpp"
+#include "core/io/mesh_file.hpp"
+#include "core/io/obj_document.hpp"
+#include "core/io/rig_files.hpp"
+#include "core/mesh/subdivision.hpp"
+#include "tools/pipeline/retarget.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct DenseScene {
+  std::string name;
+  gr::ScenePaths paths;  ///< the garment at 1×
+  bool skirt = false;
+};
+
+std::vector<DenseScene> shared_scenes() {
+  const std::string d = GR_SHARED_DATA_DIR;
+  const auto path = [&](const std::string& relative) { return d + "/" + relative; };
+  DenseScene skirt{"skirt_foxgirl",
+                   {path("garments/skirt/garment.obj"), path("avatars/foxgirl/avatar.obj"),
+                    path("garments/skirt/skeleton.obj"), path("avatars/foxgirl/skeleton.obj"), "",
+                    path("garments/skirt/no-fit.txt")},
+                   true};
+  DenseScene puffer{"puffer_goblin",
+                    {path("garments/puffer/garment.obj"), path("avatars/goblin/avatar.obj"),
+                     path("garments/puffer/skeleton.obj"), path("avatars/goblin/skeleton.obj"),
+                     path("avatars/goblin/skin.txt"), path("garments/puffer/no-fit.txt")}};
+  return {skirt, puffer};
+}
+
+/// The garment's positions and triangles (OBJ `v` order, so no-fit ids stay valid).
+gr::TriangleMesh read_garment(const std::string& path) {
+  const gr::ObjDocument document = gr::read_obj(path);
+  gr::TriangleMesh mesh;
+  mesh.vertices = document.positions;
+  mesh.faces.resize(static_cast<Eigen::Index>(document.faces.size()), 3);
+  for (std::size_t f = 0; f < document.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      mesh.faces(static_cast<Eigen::Index>(f), c) = document.faces[f][c].position;
+  return mesh;
+}
+
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+/// Resets the process's resident high-water mark, so that the next peak is the next run's.
+void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+/// The process's resident high-water mark since the last reset, MiB (VmHWM).
+double peak_memory_since_reset_mb() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+std::vector<int> parse_levels(const std::string& text) {
+  std::vector<int> levels;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) levels.push_back(std::stoi(item));
+  return levels;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Dense garments: cost and quality of a retarget as the garment is refined"};
+  std::string out = "dense_results";
+  std::string quality = "balanced";
+  std::string levels_text = "0,1,2";
+  std::string only;
+  int threads = 2;
+  app.add_option("--out", out, "Folder for the refined inputs, the runs and results.csv");
+  app.add_option("--quality", quality, "fast, balanced or accurate");
+  app.add_option("--levels", levels_text,
+                 "Subdivision levels, comma-separated, coarse to fine (0: the garment as "
+                 "given, 1: 4× its faces, 2: 16×)");
+  app.add_option("--scene", only, "Run only this scene (skirt_foxgirl or puffer_goblin)");
+  app.add_option("--threads", threads, "Worker threads");
+  CLI11_PARSE(app, argc, argv);
+  const std::vector<int> levels = parse_levels(levels_text);
+
+  fs::create_directories(out);
+  std::ofstream csv(fs::path(out) / "results.csv");
+  csv << "scene,level,faces,status,certified,wall_seconds,cpu_seconds,wall_ratio,cpu_ratio,"
+         "newton_inflate,newton_fit,peak_memory_mb,edge_change_mean,edge_change_p95,"
+         "fit_error_mean,fit_error_p95\n";
+  std::printf(
+      "| scene | faces | wall s | CPU s | × 1× (CPU) | Newton (inflate/fit) | peak MB | "
+      "edge change mean | fit error mean | certified |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const DenseScene& scene : shared_scenes()) {
+    if (!only.empty() && scene.name != only) continue;
+    gr::TriangleMesh garment = read_garment(scene.paths.garment);
+    std::vector<int> no_fit_list =
+        gr::read_vertex_list(scene.paths.no_fit, static_cast<int>(garment.vertices.rows()));
+    double base_wall = 0.0, base_cpu = 0.0;
+    int level_reached = 0;
+    for (const int level : levels) {
+      for (; level_reached < level; ++level_reached) {
+        const gr::MidpointSubdivision refined = gr::subdivide_at_midpoints(garment);
+        std::set<int> listed(no_fit_list.begin(), no_fit_list.end());
+        const Eigen::Index first_new = garment.vertices.rows();
+        for (Eigen::Index e = 0; e < refined.parents.rows(); ++e)
+          if (listed.count(refined.parents(e, 0)) && listed.count(refined.parents(e, 1)))
+            no_fit_list.push_back(static_cast<int>(first_new + e));
+        garment = refined.mesh;
+      }
+      const fs::path dir = fs::path(out) / fmt::format("{}_level{}", scene.name, level);
+      fs::create_directories(dir);
+      gr::ScenePaths paths = scene.paths;
+      paths.garment = (dir / "garment_in.obj").string();
+      paths.no_fit = (dir / "no-fit_in.txt").string();
+      gr::write_obj(paths.garment, garment);
+      {
+        std::ofstream list(paths.no_fit);
+        for (const int v : no_fit_list) list << v << '\n';
+      }
+      gr::RetargetOptions options;
+      options.inputs = paths;
+      options.skirt = scene.skirt;
+      options.quality = gr::parse_quality(quality);
+      options.threads = threads;
+      options.quiet = true;
+      options.out_dir = (dir / "run").string();
+      reset_peak_memory();
+      const double cpu_before = cpu_seconds();
+      const gr::Stopwatch clock;
+      const gr::RetargetResult result = gr::run_retarget(options);
+      const double wall = clock.seconds();
+      const double cpu = cpu_seconds() - cpu_before;
+      const double peak_mb = peak_memory_since_reset_mb();
+      if (base_wall == 0.0) {
+        base_wall = wall;
+        base_cpu = cpu;
+      }
+      const gr::RetargetReport& r = result.report;
+      const auto faces = garment.faces.rows();
+      csv << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{:.0f},{:.4f},{:.4f},{:.4g},{:.4g}\n",
+                         scene.name, level, faces, gr::to_string(result.status),
+                         r.certified() ? 1 : 0, wall, cpu, wall / base_wall, cpu / base_cpu,
+                         r.inflate.newton_iterations, r.fit.newton_iterations, peak_mb,
+                         r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
+                         r.certify.fit_error.mean, r.certify.fit_error.p95);
+      csv.flush();
+      std::printf("| %s | %ld | %.1f | %.1f | %.1f | %d/%d | %.0f | %.3f | %.3g | %s |\n",
+                  scene.name.c_str(), static_cast<long>(faces), wall, cpu, cpu / base_cpu,
+                  r.inflate.newton_iterations, r.fit.newton_iterations, peak_mb,
+                  r.certify.shape.mean_edge_change, r.certify.fit_error.mean,
+                  r.certified() ? "yes" : "no");
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
