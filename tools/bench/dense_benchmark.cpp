@@ -162,12 +162,12 @@ int main(int argc, char** argv) {
       }
       const gr::RetargetReport& r = result.report;
       const auto faces = garment.faces.rows();
-      csv << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{:.0f},{:.4f},{:.4f},{:.4g},{:.4g}\n",
-                         scene.name, level, faces, gr::to_string(result.status),
-                         r.certified() ? 1 : 0, wall, cpu, wall / base_wall, cpu / base_cpu,
-                         r.inflate.newton_iterations, r.fit.newton_iterations, peak_mb,
-                         r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
-                         r.certify.fit_error.mean, r.certify.fit_error.p95);
+      csv << fmt::format(
+          "{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{:.0f},{:.4f},{:.4f},{:.4g},{:.4g}\n",
+          scene.name, level, faces, gr::to_string(result.status), r.certified() ? 1 : 0, wall, cpu,
+          wall / base_wall, cpu / base_cpu, r.inflate.newton_iterations, r.fit.newton_iterations,
+          peak_mb, r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
+          r.certify.fit_error.mean, r.certify.fit_error.p95);
       csv.flush();
       std::printf("| %s | %ld | %.1f | %.1f | %.1f | %d/%d | %.0f | %.3f | %.3g | %s |\n",
                   scene.name.c_str(), static_cast<long>(faces), wall, cpu, cpu / base_cpu,

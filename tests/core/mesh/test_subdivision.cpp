@@ -34,10 +34,11 @@ TEST_CASE("midpoint subdivision: four faces each, the same surface, closed stays
   CHECK(once.parents.rows() == edges);
   CHECK(once.mesh.vertices.topRows(sphere.vertices.rows()) == sphere.vertices);
   for (Eigen::Index e = 0; e < once.parents.rows(); ++e) {
-    const Vector3d expected = 0.5 * (sphere.vertices.row(once.parents(e, 0)) +
-                                     sphere.vertices.row(once.parents(e, 1)))
-                                        .transpose();
-    CHECK((once.mesh.vertices.row(sphere.vertices.rows() + e).transpose() - expected).norm() == 0.0);
+    const Vector3d expected =
+        0.5 * (sphere.vertices.row(once.parents(e, 0)) + sphere.vertices.row(once.parents(e, 1)))
+                  .transpose();
+    CHECK((once.mesh.vertices.row(sphere.vertices.rows() + e).transpose() - expected).norm() ==
+          0.0);
   }
   // The refined faces tile the input faces: the enclosed volume and orientation are kept.
   CHECK(signed_volume(once.mesh) == Approx(signed_volume(sphere)).epsilon(1e-12));
@@ -45,7 +46,8 @@ TEST_CASE("midpoint subdivision: four faces each, the same surface, closed stays
   // Closed: every edge has exactly two faces, one in each direction.
   std::map<std::pair<int, int>, int> directed;
   for (Eigen::Index f = 0; f < once.mesh.faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) ++directed[{once.mesh.faces(f, k), once.mesh.faces(f, (k + 1) % 3)}];
+    for (int k = 0; k < 3; ++k)
+      ++directed[{once.mesh.faces(f, k), once.mesh.faces(f, (k + 1) % 3)}];
   for (const auto& [edge, count] : directed) {
     CAPTURE(edge.first, edge.second);
     CHECK(count == 1);
