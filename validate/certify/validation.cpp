@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
 
 #include "core/common/errors.hpp"
@@ -28,24 +29,34 @@ void measure_clearance(const TriangleMesh& first, const TriangleMesh& second,
   has_points = true;
 }
 
-/// Moves the inherited pairs out of `self` (all listed) and returns how many there were.
-std::size_t set_inherited_apart(SelfIntersections& self, std::vector<FacePair> inherited) {
+/// Moves the pairs of `list` (all listed) that `inherited` holds out of it, compared as
+/// ordered pairs, and returns how many there were.
+std::size_t set_inherited_apart(FacePairList& list, std::vector<FacePair> inherited) {
   const auto less = [](const FacePair& a, const FacePair& b) {
     return a.first != b.first ? a.first < b.first : a.second < b.second;
   };
   std::sort(inherited.begin(), inherited.end(), less);
   std::vector<FacePair> kept;
   std::size_t found = 0;
-  for (const FacePair& p : self.pairs.pairs) {
-    const FacePair ordered{std::min(p.first, p.second), std::max(p.first, p.second)};
-    if (std::binary_search(inherited.begin(), inherited.end(), ordered, less))
+  for (const FacePair& p : list.pairs) {
+    if (std::binary_search(inherited.begin(), inherited.end(), p, less))
       ++found;
     else
       kept.push_back(p);
   }
-  self.pairs.pairs = std::move(kept);
-  self.pairs.count = self.pairs.pairs.size();
+  list.pairs = std::move(kept);
+  list.count = list.pairs.size();
   return found;
+}
+
+/// The face pairs garments `first` and `second` inherited, over every entry naming them.
+std::vector<FacePair> inherited_layer_faces(const ValidationOptions& options, int first,
+                                            int second) {
+  std::vector<FacePair> faces;
+  for (const InheritedLayerPairs& entry : options.inherited_layer_pairs)
+    if (entry.first == first && entry.second == second)
+      faces.insert(faces.end(), entry.faces.begin(), entry.faces.end());
+  return faces;
 }
 
 GarmentFindings check_garment(const TriangleMesh& garment, const TriangleMesh& avatar,
@@ -61,8 +72,9 @@ GarmentFindings check_garment(const TriangleMesh& garment, const TriangleMesh& a
         g.self_intersections = find_self_intersecting_face_pairs(garment);
         if (index < options.inherited_self_pairs.size() &&
             !options.inherited_self_pairs[index].empty())
+          // Self pairs are listed (first < second), as the inherited ones are given.
           g.inherited_self_intersections =
-              set_inherited_apart(g.self_intersections, options.inherited_self_pairs[index]);
+              set_inherited_apart(g.self_intersections.pairs, options.inherited_self_pairs[index]);
         g.degenerate_faces = find_degenerate_faces(garment);
       },
       [&] {
@@ -87,8 +99,10 @@ ValidationTotals ValidationResult::totals() const {
     t.smallest_avatar_clearance =
         std::min(t.smallest_avatar_clearance, g.avatar_clearance.distance);
   }
-  for (const GarmentPairFindings& p : garment_pairs)
+  for (const GarmentPairFindings& p : garment_pairs) {
     t.garment_garment_intersections += p.intersections.count;
+    t.inherited_layer_intersections += p.inherited_intersections;
+  }
   return t;
 }
 
@@ -100,6 +114,12 @@ std::size_t ValidationResult::intersection_count() const {
 
 ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
                                  const TriangleMesh& avatar, const ValidationOptions& options) {
+  for (const InheritedLayerPairs& entry : options.inherited_layer_pairs)
+    if (entry.first < 0 || entry.first >= entry.second ||
+        entry.second >= static_cast<int>(garments.size()))
+      throw InputError("inherited_layer_pairs", 0,
+                       fmt::format("garments {} and {}: need 0 <= first < second < {}", entry.first,
+                                   entry.second, garments.size()));
   ValidationResult result;
   for (std::size_t i = 0; i < garments.size(); ++i)
     result.garments.push_back(check_garment(garments[i], avatar, options, i));
@@ -109,8 +129,11 @@ ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
       p.first = static_cast<int>(i);
       p.second = static_cast<int>(j);
       p.intersections = find_intersecting_face_pairs(garments[i], garments[j]);
+      // Measured before the inherited pairs are set apart: layers crossing there still touch.
       measure_clearance(garments[i], garments[j], p.intersections, p.clearance,
                         p.clearance_has_points);
+      p.inherited_intersections =
+          set_inherited_apart(p.intersections, inherited_layer_faces(options, p.first, p.second));
       result.garment_pairs.push_back(std::move(p));
     }
   return result;

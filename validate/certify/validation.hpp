@@ -12,6 +12,15 @@
 
 namespace gr {
 
+/// Face pairs two garments (layers) already crossed at in their input, e.g. a shirt
+/// tucked through trousers.
+struct InheritedLayerPairs {
+  int first = 0;   ///< garment index, first < second
+  int second = 0;  ///< garment index
+  /// (face row of `first`, face row of `second`) in the checked meshes.
+  std::vector<FacePair> faces;
+};
+
 /// What to check beyond intersections.
 struct ValidationOptions {
   /// Count garment vertices closer than this to the avatar (input units); none when unset.
@@ -25,6 +34,10 @@ struct ValidationOptions {
   /// there; (first < second), face rows of the checked mesh): counted apart, they do not
   /// fail the check. Missing or empty: every pair is new.
   std::vector<std::vector<FacePair>> inherited_self_pairs;
+  /// Per garment pair, the crossing face pairs it inherited (its input layers crossed
+  /// there): counted apart, they do not fail the check. Several entries for one pair add
+  /// up; a pair with no entry: every crossing is new.
+  std::vector<InheritedLayerPairs> inherited_layer_pairs;
 };
 
 /// Everything found about one garment. Face indices are rows of the checked meshes.
@@ -46,8 +59,15 @@ struct GarmentFindings {
 struct GarmentPairFindings {
   int first = 0;
   int second = 0;
-  FacePairList intersections;  ///< (face of first, face of second), all listed
-  Clearance clearance;         ///< 0 at the first intersecting pair when they intersect
+  /// (face of first, face of second), all listed: the pairs the layers did not inherit
+  /// (ValidationOptions::inherited_layer_pairs).
+  FacePairList intersections;
+  /// How many of the inherited pairs still cross; not a failure.
+  std::size_t inherited_intersections = 0;
+  /// 0 at the first crossing pair, new or inherited, when they cross, with no nearest
+  /// points: layers crossing where their input did still touch there. As for
+  /// self-intersections, inherited pairs are set apart from the failure count only.
+  Clearance clearance;
   bool clearance_has_points = false;
 };
 
@@ -56,7 +76,8 @@ struct ValidationTotals {
   std::size_t garment_avatar_intersections = 0;
   std::size_t garment_self_intersections = 0;  ///< new ones only
   std::size_t inherited_self_intersections = 0;
-  std::size_t garment_garment_intersections = 0;
+  std::size_t garment_garment_intersections = 0;  ///< new ones only
+  std::size_t inherited_layer_intersections = 0;
   std::size_t degenerate_faces = 0;
   std::size_t untested_degenerate_neighbours = 0;
   std::optional<std::size_t> near_vertices;  ///< set when a threshold was given
@@ -69,10 +90,11 @@ struct ValidationResult {
   std::vector<GarmentPairFindings> garment_pairs;
 
   ValidationTotals totals() const;
-  /// Garment–avatar, garment self- and garment–garment intersecting pairs, together.
+  /// Garment–avatar, new garment self- and new garment–garment intersecting pairs,
+  /// together (inherited pairs still crossing are not counted).
   std::size_t intersection_count() const;
-  /// True when no intersection of any kind was found (degenerate faces and vertices
-  /// near the avatar are warnings, not failures).
+  /// True when no new intersection of any kind was found (degenerate faces and vertices
+  /// near the avatar are warnings, inherited pairs are counted apart: none is a failure).
   bool certified() const { return intersection_count() == 0; }
 };
 
@@ -80,10 +102,14 @@ struct ValidationResult {
 /// intersections, clearance, near vertices), each garment against itself (exact
 /// self-intersections, degenerate faces), and each pair of garments against each other.
 /// The avatar is never checked against itself: avatars are triangle soups whose parts
-/// overlap, and that is not the garment's fault.
+/// overlap, and that is not the garment's fault. Pairs listed in
+/// `options.inherited_self_pairs` and `options.inherited_layer_pairs` are counted apart,
+/// not as failures.
 /// @param garments each #V×3 positions and #F×3 faces, as written in its file (unwelded;
 ///        rows at identical coordinates are one vertex for self-intersection).
 /// @pre every mesh has at least one face; threshold, when set, is >= 0.
+/// @throw InputError when an entry of `options.inherited_layer_pairs` does not name two
+///        garments with first < second.
 ValidationResult validate_meshes(const std::vector<TriangleMesh>& garments,
                                  const TriangleMesh& avatar, const ValidationOptions& options);
 
@@ -117,7 +143,8 @@ struct Validation {
 };
 
 /// Reads the files from disk (see read_checked_file) and runs validate_meshes on them.
-/// @throw InputError for a bad file, no garment, or a negative or non-finite threshold.
+/// @throw InputError for a bad file, no garment, a negative or non-finite threshold, or an
+///        inherited layer pair that does not name two garments (see validate_meshes).
 Validation validate_files(const std::vector<std::string>& garment_paths,
                           const std::string& avatar_path, const ValidationOptions& options);
 

@@ -198,6 +198,8 @@ nlohmann::ordered_json validation_report(const Validation& v, std::size_t max_li
         {{"first", p.first},
          {"second", p.second},
          {"intersections", pairs_json(p.intersections, max_listed)},
+         // The pairs listed are the new ones; the input layers already crossed at these.
+         {"inherited_intersections", p.inherited_intersections},
          {"clearance", clearance_json(p.clearance, p.clearance_has_points, "first", "second")}});
   }
   const ValidationTotals t = v.result.totals();
@@ -216,6 +218,7 @@ nlohmann::ordered_json validation_report(const Validation& v, std::size_t max_li
             {"garment_self_intersections", t.garment_self_intersections},
             {"inherited_self_intersections", t.inherited_self_intersections},
             {"garment_garment_intersections", t.garment_garment_intersections},
+            {"inherited_layer_intersections", t.inherited_layer_intersections},
             {"degenerate_faces", t.degenerate_faces},
             {"untested_degenerate_neighbours", t.untested_degenerate_neighbours},
             {"near_vertices", t.near_vertices ? json(*t.near_vertices) : json(nullptr)}}},
@@ -236,6 +239,9 @@ std::string validation_summary(const Validation& v) {
   if (t.inherited_self_intersections > 0)
     line += fmt::format("; {} inherited self pairs (the input crossed itself there)",
                         t.inherited_self_intersections);
+  if (t.inherited_layer_intersections > 0)
+    line += fmt::format("; {} inherited garment-garment pairs (the input layers crossed there)",
+                        t.inherited_layer_intersections);
   if (t.near_vertices)
     line += fmt::format("; {} vertices closer than {:.6g}", *t.near_vertices, *v.options.threshold);
   return line;
