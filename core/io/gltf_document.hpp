@@ -114,4 +114,31 @@ Skeleton skeleton_of_skin(const SkinBinding& skin, const std::string& path);
 void write_glb(const std::string& path, const ObjDocument& document, const GltfDocument* source,
                const Eigen::Ref<const MatrixX3d>& positions, const SkinBinding* skin);
 
+/// One mesh of a GLB written with several (write_glb_meshes).
+struct GlbMesh {
+  std::string name;  ///< the mesh's and its node's name; empty: as write_glb names it
+  const ObjDocument* document = nullptr;
+  const GltfDocument* source = nullptr;  ///< as write_glb's source; null for an OBJ document
+  MatrixX3d positions;                   ///< #P×3 of document, in the file's frame
+  const SkinBinding* skin = nullptr;     ///< #J×#P weights of this document; null: unskinned
+};
+
+/// Writes several meshes as one binary glTF (GLB), an outfit's garments together: each
+/// becomes its own glTF mesh and scene node, in the order given, written as write_glb
+/// writes one (primitives, normals, tangents, copied attributes, influences). A mesh named
+/// by neither `name` nor its source takes its OBJ file's stem, else "mesh"; names are not
+/// made unique, and read_gltf finds the first of equal names. Materials, textures,
+/// samplers and images are copied once per source model (`source->model`), each further
+/// model's appended with its texture, sampler and image indices renumbered (the five
+/// standard texture slots of a material, a texture's sampler and source; indices inside
+/// material or texture extensions are copied as they are); extensionsUsed and
+/// extensionsRequired are merged. The skinned meshes (a skin with weights) share one skin:
+/// its joints are written once as nodes, from the first skinned mesh, and every skinned
+/// mesh's node names it, with that mesh's own weights as its influences.
+/// @pre each mesh as write_glb's arguments; the skinned meshes' joints have the same world
+///      matrices and parents.
+/// @throw OutputError naming the file when `meshes` is empty, a mesh has no document, two
+///        skinned meshes' joints differ in count or names, or the file cannot be written.
+void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshes);
+
 }  // namespace gr

@@ -233,11 +233,35 @@ std::vector<OutPrimitive> primitives_from_obj(const ObjDocument& document) {
   return out;
 }
 
-/// Copies the source model's materials, textures, samplers and images, the images embedded.
-void copy_materials(const tinygltf::Model& source, GlbBuilder& glb) {
-  glb.model.materials = source.materials;
-  glb.model.textures = source.textures;
-  glb.model.samplers = source.samplers;
+/// Moves a glTF index by `offset`, leaving -1 (none) as it is.
+void offset_index(int& index, int offset) {
+  if (index >= 0) index += offset;
+}
+
+/// Appends the source model's materials, textures, samplers and images (embedded) to
+/// those already written, their texture, sampler and image indices renumbered to match
+/// (the five standard texture slots of a material, a texture's sampler and source);
+/// returns the index of its first material.
+int copy_materials(const tinygltf::Model& source, GlbBuilder& glb) {
+  const auto first_material = static_cast<int>(glb.model.materials.size());
+  const auto first_texture = static_cast<int>(glb.model.textures.size());
+  const auto first_sampler = static_cast<int>(glb.model.samplers.size());
+  const auto first_image = static_cast<int>(glb.model.images.size());
+  for (tinygltf::Material material : source.materials) {
+    offset_index(material.pbrMetallicRoughness.baseColorTexture.index, first_texture);
+    offset_index(material.pbrMetallicRoughness.metallicRoughnessTexture.index, first_texture);
+    offset_index(material.normalTexture.index, first_texture);
+    offset_index(material.occlusionTexture.index, first_texture);
+    offset_index(material.emissiveTexture.index, first_texture);
+    glb.model.materials.push_back(std::move(material));
+  }
+  for (tinygltf::Texture texture : source.textures) {
+    offset_index(texture.sampler, first_sampler);
+    offset_index(texture.source, first_image);
+    glb.model.textures.push_back(std::move(texture));
+  }
+  glb.model.samplers.insert(glb.model.samplers.end(), source.samplers.begin(),
+                            source.samplers.end());
   for (tinygltf::Image image : source.images) {
     if (!image.image.empty()) {
       image.bufferView = glb.add_view(image.image.data(), image.image.size(), 0);
@@ -252,12 +276,15 @@ void copy_materials(const tinygltf::Model& source, GlbBuilder& glb) {
     image.as_is = false;
     glb.model.images.push_back(std::move(image));
   }
-  for (const std::string& extension : source.extensionsUsed)
-    if (extension != "KHR_draco_mesh_compression" && extension != "EXT_meshopt_compression")
-      glb.model.extensionsUsed.push_back(extension);
-  for (const std::string& extension : source.extensionsRequired)
-    if (extension != "KHR_draco_mesh_compression" && extension != "EXT_meshopt_compression")
-      glb.model.extensionsRequired.push_back(extension);
+  const auto merge = [](const std::vector<std::string>& from, std::vector<std::string>& to) {
+    for (const std::string& extension : from)
+      if (extension != "KHR_draco_mesh_compression" && extension != "EXT_meshopt_compression" &&
+          std::find(to.begin(), to.end(), extension) == to.end())
+        to.push_back(extension);
+  };
+  merge(source.extensionsUsed, glb.model.extensionsUsed);
+  merge(source.extensionsRequired, glb.model.extensionsRequired);
+  return first_material;
 }
 
 /// Copies a source attribute's elements as stored (texture coordinates, colours, ...).
@@ -270,7 +297,7 @@ int copy_attribute(const tinygltf::Model& source, int index, const std::string& 
                           a.maxValues);
 }
 
-/// The skin's joints as nodes (after the mesh node, same order) with the skin over them.
+/// The skin's joints as nodes (after the mesh nodes, same order) with the skin over them.
 void add_skin(const SkinBinding& skin, GlbBuilder& glb, std::vector<int>& scene_roots) {
   const int first = static_cast<int>(glb.model.nodes.size());
   std::vector<float> inverse_bind;
@@ -369,27 +396,52 @@ bool is_rewritten_attribute(const std::string& name) {
          name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0;
 }
 
-}  // namespace
+bool is_skinned(const GlbMesh& mesh) { return mesh.skin && mesh.skin->weights.cols() > 0; }
 
-void write_glb(const std::string& path, const ObjDocument& document, const GltfDocument* source,
-               const Eigen::Ref<const MatrixX3d>& positions_in, const SkinBinding* skin) {
-  const MatrixX3d positions = positions_in;
-  GlbBuilder glb;
+/// The name write_glb gives a mesh: the source's, else the OBJ file's stem, else "mesh".
+std::string mesh_name(const GlbMesh& mesh) {
+  if (!mesh.name.empty()) return mesh.name;
+  std::string name = mesh.source
+                         ? mesh.source->mesh_name
+                         : std::filesystem::path(mesh.document->source_path).stem().string();
+  return name.empty() ? "mesh" : name;
+}
+
+/// Throws OutputError naming both meshes unless `skin` has the joints of `first`, by count
+/// and name. World matrices are left to the caller's @pre: float noise in a skin read
+/// again would fail an exact comparison, and a tolerance would be a guess.
+void require_same_joints(const std::string& path, const std::string& first_name,
+                         const SkinBinding& first, const std::string& name,
+                         const SkinBinding& skin) {
+  if (skin.joints.size() != first.joints.size())
+    throw OutputError(
+        fmt::format("{}: meshes '{}' and '{}' are skinned over different joints ({} and {} joints)",
+                    path, first_name, name, first.joints.size(), skin.joints.size()));
+  for (std::size_t j = 0; j < skin.joints.size(); ++j)
+    if (skin.joints[j].name != first.joints[j].name)
+      throw OutputError(fmt::format(
+          "{}: meshes '{}' and '{}' are skinned over different joints (joint {} is '{}' and '{}')",
+          path, first_name, name, j, first.joints[j].name, skin.joints[j].name));
+}
+
+/// Appends `in` as one glTF mesh, its source's materials starting at `first_material`;
+/// returns the mesh's index.
+int add_mesh(const GlbMesh& in, const std::string& name, int first_material, GlbBuilder& glb) {
+  const ObjDocument& document = *in.document;
+  const GltfDocument* source = in.source;
+  const MatrixX3d& positions = in.positions;
   const std::vector<OutPrimitive> primitives =
       source ? primitives_from_gltf(document, *source) : primitives_from_obj(document);
   const std::vector<std::vector<Vector3d>> normals =
       vertex_normals(primitives, document, positions);
-  if (source) copy_materials(source->model->model, glb);
 
   tinygltf::Mesh mesh;
-  mesh.name =
-      source ? source->mesh_name : std::filesystem::path(document.source_path).stem().string();
-  if (mesh.name.empty()) mesh.name = "mesh";
+  mesh.name = name;
   for (std::size_t i = 0; i < primitives.size(); ++i) {
     const OutPrimitive& p = primitives[i];
     tinygltf::Primitive out;
     out.mode = TINYGLTF_MODE_TRIANGLES;
-    out.material = p.material;
+    out.material = p.material >= 0 ? first_material + p.material : -1;
     std::vector<float> xyz;
     std::vector<float> nxyz;
     for (std::size_t v = 0; v < p.position.size(); ++v)
@@ -406,9 +458,9 @@ void write_glb(const std::string& path, const ObjDocument& document, const GltfD
           glb.add_floats(vertex_tangents(p, positions, normals[i]), TINYGLTF_TYPE_VEC4, 4,
                          TINYGLTF_TARGET_ARRAY_BUFFER, false);
     if (p.source) {
-      for (const auto& [name, index] : p.source->attributes)
-        if (!is_rewritten_attribute(name))
-          out.attributes[name] =
+      for (const auto& [attribute, index] : p.source->attributes)
+        if (!is_rewritten_attribute(attribute))
+          out.attributes[attribute] =
               copy_attribute(source->model->model, index, document.source_path, glb);
     } else if (!p.uv.empty()) {
       std::vector<float> uv;
@@ -417,8 +469,8 @@ void write_glb(const std::string& path, const ObjDocument& document, const GltfD
       out.attributes["TEXCOORD_0"] =
           glb.add_floats(uv, TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
     }
-    if (skin && skin->weights.cols() > 0) {
-      const auto [joints, weights] = add_influences(p, *skin, glb);
+    if (is_skinned(in)) {
+      const auto [joints, weights] = add_influences(p, *in.skin, glb);
       out.attributes["JOINTS_0"] = joints;
       out.attributes["WEIGHTS_0"] = weights;
     }
@@ -431,17 +483,50 @@ void write_glb(const std::string& path, const ObjDocument& document, const GltfD
     mesh.primitives.push_back(out);
   }
   glb.model.meshes.push_back(mesh);
+  return static_cast<int>(glb.model.meshes.size()) - 1;
+}
 
-  tinygltf::Node mesh_node;
-  mesh_node.name = mesh.name;
-  mesh_node.mesh = 0;
-  glb.model.nodes.push_back(mesh_node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  if (skin && skin->weights.cols() > 0) {
-    glb.model.nodes[0].skin = 0;
-    add_skin(*skin, glb, scene.nodes);
+}  // namespace
+
+void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshes) {
+  if (meshes.empty()) throw OutputError(fmt::format("{}: no mesh to write", path));
+  std::vector<std::string> names;
+  const SkinBinding* skin = nullptr;  // the first skinned mesh's, written for all
+  std::size_t skin_mesh = 0;
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    if (!meshes[m].document)
+      throw OutputError(fmt::format("{}: mesh {} to write has no document", path, m));
+    names.push_back(mesh_name(meshes[m]));
+    if (!is_skinned(meshes[m])) continue;
+    if (skin) {
+      require_same_joints(path, names[skin_mesh], *skin, names[m], *meshes[m].skin);
+    } else {
+      skin = meshes[m].skin;
+      skin_mesh = m;
+    }
   }
+
+  GlbBuilder glb;
+  // Each source model's materials once, in the order the meshes first name the models.
+  std::map<const GltfModel*, int> first_material;
+  for (const GlbMesh& mesh : meshes)
+    if (mesh.source && first_material.count(mesh.source->model.get()) == 0)
+      first_material.emplace(mesh.source->model.get(),
+                             copy_materials(mesh.source->model->model, glb));
+
+  tinygltf::Scene scene;
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const GlbMesh& mesh = meshes[m];
+    tinygltf::Node node;
+    node.name = names[m];
+    node.mesh = add_mesh(mesh, names[m],
+                         mesh.source ? first_material.at(mesh.source->model.get()) : 0, glb);
+    // One skin, written after the mesh nodes, shared by every skinned mesh.
+    if (is_skinned(mesh)) node.skin = 0;
+    glb.model.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(m));
+  }
+  if (skin) add_skin(*skin, glb, scene.nodes);
   glb.model.scenes.push_back(scene);
   glb.model.defaultScene = 0;
 
@@ -450,6 +535,13 @@ void write_glb(const std::string& path, const ObjDocument& document, const GltfD
     if (!writer.WriteGltfSceneToStream(&glb.model, out, false, true))
       throw OutputError(fmt::format("{}: the glTF writer failed", path));
   });
+}
+
+void write_glb(const std::string& path, const ObjDocument& document, const GltfDocument* source,
+               const Eigen::Ref<const MatrixX3d>& positions, const SkinBinding* skin) {
+  std::vector<GlbMesh> meshes;
+  meshes.push_back(GlbMesh{"", &document, source, positions, skin});
+  write_glb_meshes(path, meshes);
 }
 
 }  // namespace gr
