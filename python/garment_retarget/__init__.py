@@ -164,17 +164,36 @@ def retarget(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **
     and ``certificate`` (certificate.json) as dicts, ``garment`` as (V, F) arrays in the
     input OBJ's vertex order (None when nothing was written), and ``out`` (None for a
     temporary folder).
+
+    A list of garments is an outfit, each garment a layer: the dict then has ``garments``,
+    one (V, F) pair per garment written as OBJ (None for GLB), in the order given.
     """
     options.setdefault("quiet", True)
+    outfit = isinstance(garment, list)
     with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
-        typed = retarget_options(garment=_mesh_file(garment, inputs, "garment"),
-                                 avatar=_mesh_file(avatar, inputs, "avatar"), out=folder, **options)
+        garments = ([_mesh_file(g, inputs, f"garment{k}") for k, g in enumerate(garment)] if outfit
+                    else _mesh_file(garment, inputs, "garment"))
+        typed = retarget_options(garment=garments, avatar=_mesh_file(avatar, inputs, "avatar"), out=folder,
+                                 **options)
         result = run_retarget(typed)
+        report = _read_json(os.path.join(folder, "report.json"))
+        if outfit:
+            layers = ((report or {}).get("outfit") or {}).get("layers", [])
+            return {
+                "exit_code": result.exit_code,
+                "status": result.status_name,
+                "message": result.message,
+                "report": report,
+                "certificate": _read_json(os.path.join(folder, "certificate.json")),
+                "garments": [_read_mesh_if_present(layer["written"]) if layer["written"].endswith(".obj")
+                             else None for layer in layers],
+                "out": None if out is None else folder,
+            }
         return {
             "exit_code": result.exit_code,
             "status": result.status_name,
             "message": result.message,
-            "report": _read_json(os.path.join(folder, "report.json")),
+            "report": report,
             "certificate": _read_json(os.path.join(folder, "certificate.json")),
             "garment": _read_mesh_if_present(os.path.join(folder, "garment.obj")),
             "out": None if out is None else folder,

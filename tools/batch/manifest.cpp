@@ -28,6 +28,38 @@ std::string option_name(std::string key) {
   return key;
 }
 
+/// An outfit's "garments": an array of garment paths, or of objects giving each garment's
+/// "garment" and its own "garment_mesh", "no_fit", "source_skeleton" and "source_body".
+template <typename AddInput, typename Fail>
+void add_outfit(const nlohmann::json& garments, const AddInput& add_input, BatchJob& job,
+                const Fail& fail) {
+  if (!garments.is_array() || garments.empty())
+    throw fail("\"garments\" must be a non-empty array of paths or of garment objects");
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const nlohmann::json& item : garments) {
+    if (!item.is_object()) {
+      add_input("garment", item, "garments");
+      continue;
+    }
+    for (const auto& [key, value] : item.items()) {
+      if (key == "garment" || key == "no_fit" || key == "source_skeleton" || key == "source_body")
+        add_input(key, value, "garments." + key);
+      else if (key == "garment_mesh" && value.is_string())
+        meshes.push_back(value);
+      else
+        throw fail(
+            fmt::format("\"garments.{}\" is not a garment's own: give garment, "
+                        "garment_mesh, no_fit, source_skeleton or source_body",
+                        key));
+    }
+    if (!item.contains("garment")) throw fail("each of \"garments\" needs its \"garment\"");
+  }
+  if (!meshes.empty()) {
+    if (job.options.contains("garment-mesh")) throw fail("\"garment_mesh\" given twice");
+    job.options["garment-mesh"] = meshes;
+  }
+}
+
 BatchJob parse_job(const std::string& manifest, std::size_t line_number, const std::string& text,
                    const fs::path& folder) {
   const auto fail = [&](const std::string& message) {
@@ -50,16 +82,24 @@ BatchJob parse_job(const std::string& manifest, std::size_t line_number, const s
   job.id = id->get<std::string>();
   const auto& inputs = batch_input_keys();
   const auto& reserved = batch_reserved_options();
+  const auto add_input = [&](const std::string& key, const nlohmann::json& value,
+                             const std::string& where) {
+    if (!value.is_string() || value.get<std::string>().empty())
+      throw fail(fmt::format("\"{}\" must be a file path", where));
+    const fs::path path(value.get<std::string>());
+    job.inputs.emplace_back(key, (path.is_absolute() ? path : folder / path).string());
+  };
   for (const auto& [raw_key, value] : line.items()) {
     if (raw_key == "id") continue;
+    if (raw_key == "garments") {
+      add_outfit(value, add_input, job, fail);
+      continue;
+    }
     const std::string name = option_name(raw_key);
     std::string key = name;
     std::replace(key.begin(), key.end(), '-', '_');
     if (std::find(inputs.begin(), inputs.end(), key) != inputs.end()) {
-      if (!value.is_string() || value.get<std::string>().empty())
-        throw fail(fmt::format("\"{}\" must be a file path", raw_key));
-      const fs::path path(value.get<std::string>());
-      job.inputs.emplace_back(key, (path.is_absolute() ? path : folder / path).string());
+      add_input(key, value, raw_key);
     } else if (std::find(reserved.begin(), reserved.end(), name) != reserved.end()) {
       throw fail(fmt::format("\"{}\" is set by the batch, not per job", raw_key));
     } else if (value.is_boolean() && !value.get<bool>()) {
@@ -71,7 +111,9 @@ BatchJob parse_job(const std::string& manifest, std::size_t line_number, const s
       throw fail(fmt::format("\"{}\" must be a string, a number or a boolean", raw_key));
     }
   }
-  std::sort(job.inputs.begin(), job.inputs.end());
+  // By key only: the garments of an outfit keep their order.
+  std::stable_sort(job.inputs.begin(), job.inputs.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const char* required : {"avatar", "garment"}) {
     const bool given = std::any_of(job.inputs.begin(), job.inputs.end(),
                                    [&](const auto& input) { return input.first == required; });
@@ -114,7 +156,15 @@ std::vector<BatchJob> read_manifest(const std::string& manifest_path) {
 
 nlohmann::json job_options(const BatchJob& job, int threads) {
   nlohmann::json options = job.options;
-  for (const auto& [key, path] : job.inputs) options[key] = path;
+  // A key given for several garments of an outfit becomes an array, in their order.
+  for (const auto& [key, path] : job.inputs) {
+    if (!options.contains(key))
+      options[key] = path;
+    else if (options[key].is_array())
+      options[key].push_back(path);
+    else
+      options[key] = nlohmann::json::array({options[key], path});
+  }
   options["out"] = ".";
   options["write-in-place"] = true;
   options["threads"] = threads;
@@ -123,7 +173,15 @@ nlohmann::json job_options(const BatchJob& job, int threads) {
 
 std::string job_key(const BatchJob& job) {
   nlohmann::json inputs = nlohmann::json::object();
-  for (const auto& [key, path] : job.inputs) inputs[key] = sha256_of_file(path);
+  for (const auto& [key, path] : job.inputs) {
+    const std::string digest = sha256_of_file(path);
+    if (!inputs.contains(key))
+      inputs[key] = digest;
+    else if (inputs[key].is_array())
+      inputs[key].push_back(digest);
+    else
+      inputs[key] = nlohmann::json::array({inputs[key], digest});
+  }
   const nlohmann::json keyed = {
       {"version", GR_VERSION}, {"inputs", inputs}, {"options", job.options}};
   return sha256_of_text(keyed.dump());

@@ -20,7 +20,28 @@ class ParameterOverrides;
 
 /// The options naming a scene's files: --garment, --avatar, --out (all required), and the
 /// optional --source-skeleton / --target-skeleton pair and --skin-weights.
-void add_scene_options(CLI::App& command, ScenePaths& inputs, std::string& out_dir);
+/// The per-garment options of an outfit as given: repeated options in the order given
+/// (see distribute_garments).
+struct GarmentLists {
+  std::vector<std::string> garments;
+  std::vector<std::string> garment_meshes;
+  std::vector<std::string> no_fits;
+  std::vector<std::string> source_skeletons;
+  std::vector<std::string> source_bodies;
+};
+
+/// Fills `inputs`' garment, garment mesh, no-fit, source skeleton and source body, and its
+/// more_garments, from `lists`. One file with several meshes gives a layer per mesh;
+/// several files give a layer each (with none or one mesh name each). No-fit lists, source
+/// skeletons and source bodies are none, one for every layer (a shared frame and body), or
+/// one per layer in the same order.
+/// @throw CLI::ValidationError naming the option whose count does not match.
+void distribute_garments(const GarmentLists& lists, ScenePaths& inputs);
+
+/// With `outfit`, --garment, --garment-mesh and --source-skeleton repeat into it (see
+/// distribute_garments); without, each is one value in `inputs`.
+void add_scene_options(CLI::App& command, ScenePaths& inputs, std::string& out_dir,
+                       GarmentLists* outfit = nullptr);
 
 /// The shape-check options shared by retarget and validate: --shape-check on|off and one
 /// option per threshold, written into `thresholds` (whose values are the defaults shown).
@@ -28,7 +49,9 @@ void add_shape_check_options(CLI::App& command, ShapeThresholds& thresholds);
 
 /// The options for what retarget infers when it is not given: --source-body, the binding's
 /// and the no-fit inference's knobs, written into `inputs` and `options`.
-void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options);
+/// With `outfit`, --source-body repeats into it.
+void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options,
+                           GarmentLists* outfit = nullptr);
 
 /// The limits of one run, shared by retarget and shrink: --max-input-mb, --max-faces,
 /// --max-memory-mb and --timeout, written into `limits`.

@@ -4,12 +4,18 @@
 
 namespace gr {
 
-void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options) {
-  command.add_option("--source-body", inputs.source_body,
-                     "The body the garment was made on (OBJ or glTF, in the garment's frame; "
-                     "it may be cut away under the clothes): it gives the garment's ease, "
-                     "which the fit keeps (see --fit), and the no-fit list is inferred from it "
-                     "when --no-fit is not given");
+void add_inference_options(CLI::App& command, ScenePaths& inputs, InferenceOptions& options,
+                           GarmentLists* outfit) {
+  const char* source_body_help =
+      "The body the garment was made on (OBJ or glTF, in the garment's frame; it may be cut "
+      "away under the clothes): it gives the garment's ease, which the fit keeps (see --fit), "
+      "and the no-fit list is inferred from it when --no-fit is not given";
+  if (outfit)
+    command.add_option("--source-body", outfit->source_bodies,
+                       std::string(source_body_help) +
+                           "; in an outfit, once for all garments or once per garment");
+  else
+    command.add_option("--source-body", inputs.source_body, source_body_help);
   command.add_option("--source-body-mesh", inputs.source_body_meshes,
                      "glTF source body: a mesh or node to read; repeat for several, merged "
                      "(default: every mesh its skin drives, but the garment's when the garment "

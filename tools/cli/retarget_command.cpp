@@ -17,12 +17,14 @@ namespace {
 /// text until typed() parses them.
 struct RetargetBinding {
   RetargetOptions options;
+  GarmentLists garments;
   std::string shrink_mode;
   std::string quality = to_string(Quality::kBalanced);
   std::string fit_mode;
 
   RetargetOptions typed() const {
     RetargetOptions typed_options = options;
+    distribute_garments(garments, typed_options.inputs);
     if (!shrink_mode.empty()) typed_options.shrink_mode = parse_shrink_mode(shrink_mode);
     if (!fit_mode.empty()) typed_options.fit_mode = parse_fit_mode(fit_mode);
     typed_options.quality = parse_quality(quality);
@@ -40,14 +42,25 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
   std::string* fit_mode = &binding.fit_mode;
   CLI::App* cmd = root.add_subcommand(
       "retarget", "Refit a garment onto an avatar, then certify the written garment.");
-  add_scene_options(*cmd, options->inputs, options->out_dir);
-  cmd->add_option("--no-fit", options->inputs.no_fit,
+  add_scene_options(*cmd, options->inputs, options->out_dir, &binding.garments);
+  cmd->add_option("--no-fit", binding.garments.no_fits,
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting; "
-                  "inferred when not given (see --source-body)");
+                  "inferred when not given (see --source-body); in an outfit, one per garment "
+                  "(a garment without a list then fits everywhere)");
   cmd->add_option("--format", options->format,
                   "Written garment format (default: the garment's input format, glb for .glb "
                   "and .gltf)")
       ->check(CLI::IsMember({"obj", "glb"}));
+  cmd->add_flag("--split", options->split,
+                "Outfit written as GLB: a file per garment (OUT/<garment>.glb) instead of "
+                "OUT/outfit.glb with a mesh and skin per garment");
+  cmd->add_option("--layer-order", options->layer_order,
+                  "Outfit: the garments from inside to outside, each by its name (glTF mesh, "
+                  "else file stem) or file; repeat for each (default: measured on the source, "
+                  "by rays from the source skeleton's bones outward)");
+  cmd->add_flag("--write-avatar", options->write_avatar,
+                "Outfit: also write OUT/avatar.glb (or .obj) without the faces every garment "
+                "hides (OUT/hidden-avatar-faces.txt), skinned as it was");
   cmd->add_option("--skin-max-distance", options->skin_transfer.max_distance,
                   "GLB skin: a garment vertex takes the avatar's weights directly within this "
                   "distance of the avatar (fraction of its bounding-box diagonal); the others "
@@ -90,7 +103,7 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
       ->default_str("open");
   add_parameter_options(*cmd, options->overrides);
   add_shape_check_options(*cmd, options->shape_thresholds);
-  add_inference_options(*cmd, options->inputs, options->inference);
+  add_inference_options(*cmd, options->inputs, options->inference, &binding.garments);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");

@@ -115,32 +115,76 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
   return weights;
 }
 
-TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
-                              const NormalizedScene& normalized) {
-  const std::string& path = paths.source_body;
+namespace {
+
+/// One garment's source body as read (welded, in its file's frame). A glTF body from the
+/// garments' own file leaves out every garment mesh of that file by default.
+SimulationMesh read_one_source_body(const std::string& path,
+                                    const std::vector<std::string>& named_meshes,
+                                    const Scene& scene) {
   ObjDocument document;
   if (is_gltf_path(path)) {
-    std::vector<std::string> meshes = paths.source_body_meshes;
+    std::vector<std::string> meshes = named_meshes;
     std::error_code error;
-    if (meshes.empty() && scene.garment_gltf &&
-        std::filesystem::equivalent(path, paths.garment, error)) {
+    bool from_garment_file = false;
+    for (const GarmentLayer& layer : scene.layers)
+      from_garment_file |= layer.gltf && std::filesystem::equivalent(path, layer.path, error);
+    if (meshes.empty() && from_garment_file) {
       meshes = gltf_skin_mesh_names(path);
-      const std::string& garment = scene.garment_gltf->mesh_name;
-      meshes.erase(std::remove(meshes.begin(), meshes.end(), garment), meshes.end());
+      for (const GarmentLayer& layer : scene.layers)
+        if (layer.gltf && std::filesystem::equivalent(path, layer.path, error))
+          meshes.erase(std::remove(meshes.begin(), meshes.end(), layer.mesh), meshes.end());
       if (meshes.empty())
-        throw InputError(path, 0, "has no mesh but the garment to be the source body");
+        throw InputError(path, 0, "has no mesh but the garments to be the source body");
     }
     document = read_gltf_meshes(path, meshes).document;
   } else {
-    if (!paths.source_body_meshes.empty())
+    if (!named_meshes.empty())
       throw InputError(path, 0, "--source-body-mesh is for glTF files only");
     document = read_obj(path);
   }
-  const SimulationMesh read = make_simulation_mesh(document);
+  SimulationMesh read = make_simulation_mesh(document);
   if (read.mesh.faces.rows() == 0)
     throw InputError(path, 0, "source body has no (non-degenerate) triangle");
-  return {normalized.normalization.garment_to_scene.apply_rows(read.mesh.vertices),
-          read.mesh.faces};
+  return read;
+}
+
+}  // namespace
+
+bool source_body_given(const ScenePaths& paths) {
+  return !paths.source_body.empty() ||
+         std::any_of(paths.more_garments.begin(), paths.more_garments.end(),
+                     [](const GarmentPaths& g) { return !g.source_body.empty(); });
+}
+
+bool no_fit_given(const ScenePaths& paths) {
+  return !paths.no_fit.empty() ||
+         std::any_of(paths.more_garments.begin(), paths.more_garments.end(),
+                     [](const GarmentPaths& g) { return !g.no_fit.empty(); });
+}
+
+TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
+                              const NormalizedScene& normalized) {
+  const Similarity& to_scene = normalized.normalization.garment_to_scene;
+  TriangleMesh body;
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const std::string& path = k == 0 ? paths.source_body : paths.more_garments[k - 1].source_body;
+    if (path.empty()) continue;
+    const SimulationMesh read = read_one_source_body(
+        path, k == 0 ? paths.source_body_meshes : std::vector<std::string>{}, scene);
+    const Eigen::Affine3d to_first(scene.layers[k].to_first_frame);
+    MatrixX3d vertices(read.mesh.vertices.rows(), 3);
+    for (Eigen::Index v = 0; v < vertices.rows(); ++v)
+      vertices.row(v) =
+          to_scene.apply(to_first * Vector3d(read.mesh.vertices.row(v).transpose())).transpose();
+    const auto offset = static_cast<int>(body.vertices.rows());
+    MatrixX3d v(body.vertices.rows() + vertices.rows(), 3);
+    v << body.vertices, vertices;
+    Eigen::MatrixX3i f(body.faces.rows() + read.mesh.faces.rows(), 3);
+    f << body.faces, (read.mesh.faces.array() + offset).matrix();
+    body = {std::move(v), std::move(f)};
+  }
+  return body;
 }
 
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,

@@ -65,8 +65,16 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
 /// the garment's own mesh when the garment comes from the same file; a body cut away under
 /// the clothes is valid.
 /// @throw InputError when it cannot be read or has no (non-degenerate) triangle.
+/// In an outfit, each garment's own body (GarmentPaths::source_body) is placed by its frame
+/// (GarmentLayer::to_first_frame), and all are merged: one body for every layer.
 TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
                               const NormalizedScene& normalized);
+
+/// Whether a source body was given, for the first garment or another of the outfit.
+bool source_body_given(const ScenePaths& paths);
+/// Whether a no-fit list was given, for any garment of the outfit (garments without one
+/// then fit everywhere).
+bool no_fit_given(const ScenePaths& paths);
 
 /// The no-fit list a run uses, as welded garment vertex ids: the scene's when one was given
 /// (its file named in ScenePaths::no_fit), else inferred (from `source_body` when not null,

@@ -34,6 +34,50 @@ nlohmann::json parameters_json(const RetargetReport& r) {
 
 }  // namespace
 
+nlohmann::json to_json(const LayerOrderReport& r) {
+  return {{"rays", r.rays},
+          {"rays_meeting_layers", r.rays_meeting_layers},
+          {"out_of_order", r.out_of_order}};
+}
+
+nlohmann::json to_json(const OutfitReport& r) {
+  nlohmann::json layers = nlohmann::json::array();
+  for (const OutfitLayerReport& l : r.layers)
+    layers.push_back({{"name", l.name},
+                      {"path", l.path},
+                      {"mesh", l.mesh},
+                      {"faces", l.faces},
+                      {"written", l.written},
+                      {"written_mesh", l.written_mesh},
+                      {"shape",
+                       {{"scale", l.shape.scale},
+                        {"mean_edge_change", l.shape.mean_edge_change},
+                        {"p95_edge_change", l.shape.p95_edge_change},
+                        {"area_change", l.shape.area_change}}}});
+  return {{"layers", layers},
+          {"order", r.order},
+          {"order_from", r.order_from},
+          {"order_on_source", to_json(r.source)},
+          {"order_on_result", to_json(r.result)},
+          {"order_kept", r.order_kept},
+          {"layer_intersections", r.layer_intersections},
+          {"inherited_layer_intersections", r.inherited_layer_intersections},
+          {"hidden_avatar_faces",
+           {{"avatar_faces", r.avatar_faces},
+            {"hidden", r.hidden_faces},
+            {"kept_for_rays", r.kept_for_rays},
+            {"kept_for_margin", r.kept_for_margin},
+            {"path", r.hidden_faces_path},
+            {"avatar_written", r.avatar_path}}},
+          {"seconds", r.seconds},
+          {"meaning",
+           "order: the garments from inside to outside; rays from the body's bones outward "
+           "meet them in that order, out_of_order counts the rays that meet an outer layer "
+           "first. hidden: avatar faces every garment covers (no ray from the face's normal "
+           "cone escapes the outfit, and no opening lies within the margin), listed in "
+           "hidden-avatar-faces.txt"}};
+}
+
 nlohmann::json to_json(const RetargetReport& r) {
   using nlohmann::json;
   json report = {
@@ -162,6 +206,7 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"meaning",
        "edges shared by more than two faces: the faces beyond the first two took tied copies "
        "of the edge's vertices for the solver; the written file welds them back"}};
+  if (r.outfit) report["outfit"] = to_json(*r.outfit);
   if (!r.shrink.conflict.is_null()) report["shrink_conflict"] = r.shrink.conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,46 @@ struct CertifyReport {
   ShapeThresholds shape_thresholds;  ///< as applied (see RetargetOptions::shape_thresholds)
 };
 
+/// Layer order on one side of the run, by rays from the body's bones (else its surface)
+/// outward: along each, the first hit of each layer it meets.
+struct LayerOrderReport {
+  int rays = 0;
+  int rays_meeting_layers = 0;  ///< rays that meet two or more layers
+  int out_of_order = 0;         ///< of those, rays that meet an outer layer first
+};
+
+/// One garment of an outfit.
+struct OutfitLayerReport {
+  std::string name;  ///< GarmentLayer::name
+  std::string path;
+  std::string mesh;  ///< the glTF mesh read; empty for OBJ
+  int faces = 0;
+  std::string written;       ///< where it was written (final path)
+  std::string written_mesh;  ///< its mesh in that file; empty: the whole file
+  ShapeChange shape;         ///< its own change of shape (normalized units)
+};
+
+/// An outfit: its layers, their order, and the avatar faces they hide.
+struct OutfitReport {
+  std::vector<OutfitLayerReport> layers;  ///< in the order given
+  std::vector<std::string> order;         ///< inside to outside, by name
+  std::string order_from;                 ///< "given" (--layer-order) or "measured"
+  LayerOrderReport source;                ///< the input on its source
+  LayerOrderReport result;                ///< the written outfit on the avatar
+  /// No ray meets an outer layer first on the result where none did on the source; else
+  /// no more such rays, in proportion, than on the source.
+  bool order_kept = false;
+  std::size_t layer_intersections = 0;            ///< new garment–garment pairs (certificate)
+  std::size_t inherited_layer_intersections = 0;  ///< inherited ones still crossing
+  int avatar_faces = 0;
+  int hidden_faces = 0;
+  int kept_for_rays = 0;    ///< not hidden: a ray from the face escapes the outfit
+  int kept_for_margin = 0;  ///< not hidden: within the margin of an opening
+  std::string hidden_faces_path;
+  std::string avatar_path;  ///< the avatar without its hidden faces (--write-avatar)
+  double seconds = 0.0;
+};
+
 /// What a retarget run did and measured, one part per stage; written as report.json.
 struct RetargetReport {
   Quality quality = Quality::kBalanced;
@@ -151,12 +192,15 @@ struct RetargetReport {
   FitReport fit;
   SkinTransferReport skin;  ///< written with a GLB garment
   CertifyReport certify;
+  std::optional<OutfitReport> outfit;  ///< set for several garments
 
   std::vector<std::string> warnings;
   bool certified() const { return certify.certified; }
 };
 
 nlohmann::json to_json(const RetargetReport& report);
+nlohmann::json to_json(const OutfitReport& report);
+nlohmann::json to_json(const LayerOrderReport& report);
 
 /// Peak resident memory of this process so far, MiB.
 double peak_memory_mb();

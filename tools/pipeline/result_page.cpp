@@ -63,55 +63,67 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
                                   const Certificate& certificate, const RetargetReport& report) {
   const Validation& checked = certificate.validation;
   ReportPageData data;
-  data.title =
-      fmt::format("{} on {}", fs::path(scene.garment_document.source_path).filename().string(),
-                  fs::path(scene.avatar_document.source_path).filename().string());
+  const std::string garments =
+      scene.layers.size() > 1 ? fmt::format("an outfit of {} garments", scene.layers.size())
+                              : fs::path(scene.garment_document.source_path).filename().string();
+  data.title = fmt::format("{} on {}", garments,
+                           fs::path(scene.avatar_document.source_path).filename().string());
   data.subtitle = fmt::format("garment-retarget {}: {} on {}, quality {}", GR_VERSION,
                               scene.garment_document.source_path, scene.avatar_document.source_path,
                               to_string(report.quality));
   data.avatar = checked.avatar.mesh;
-  const TriangleMesh& output = checked.garments.front().mesh;
+  const std::vector<bool> no_fit = no_fit_faces(scene);
+  for (std::size_t k = 0; k < scene.layers.size() && k < checked.garments.size(); ++k) {
+    const GarmentLayer& layer = scene.layers[k];
+    const TriangleMesh& output = checked.garments[k].mesh;
+    // The input as the run placed it over the avatar: garment frame to scene to avatar frame.
+    TriangleMesh input = mesh_as_written(layer.document);
+    for (Eigen::Index i = 0; i < input.vertices.rows(); ++i)
+      input.vertices.row(i) =
+          frames.avatar_to_scene
+              .invert(frames.garment_to_scene.apply(input.vertices.row(i).transpose()))
+              .transpose();
+    std::set<int> input_crossing;
+    for (const FacePair& p : find_intersecting_face_pairs(input, data.avatar).pairs)
+      input_crossing.insert(p.first);
 
-  // The input as the run placed it over the avatar: garment frame to scene to avatar frame.
-  TriangleMesh input = mesh_as_written(scene.garment_document);
-  for (Eigen::Index i = 0; i < input.vertices.rows(); ++i)
-    input.vertices.row(i) =
-        frames.avatar_to_scene
-            .invert(frames.garment_to_scene.apply(input.vertices.row(i).transpose()))
-            .transpose();
-  std::set<int> input_crossing;
-  for (const FacePair& p : find_intersecting_face_pairs(input, data.avatar).pairs)
-    input_crossing.insert(p.first);
-
-  PageGarment garment;
-  garment.name = fs::path(scene.garment_document.source_path).filename().string();
-  garment.faces = output.faces;
-  MatrixX3d output_vertices = output.vertices;
-  if (output.vertices.rows() != input.vertices.rows() &&
-      output.faces.rows() == input.faces.rows()) {
-    // Another format splits vertices otherwise (an OBJ garment written as GLB): faces keep
-    // their order, so each input vertex takes the written position of its corners.
-    output_vertices = input.vertices;
-    for (Eigen::Index f = 0; f < input.faces.rows(); ++f)
-      for (int k = 0; k < 3; ++k)
-        output_vertices.row(input.faces(f, k)) = output.vertices.row(output.faces(f, k));
-    garment.faces = input.faces;
+    PageGarment garment;
+    garment.name = scene.layers.size() > 1
+                       ? layer.name
+                       : fs::path(layer.document.source_path).filename().string();
+    garment.faces = output.faces;
+    MatrixX3d output_vertices = output.vertices;
+    if (output.vertices.rows() != input.vertices.rows() &&
+        output.faces.rows() == input.faces.rows()) {
+      // Another format splits vertices otherwise (an OBJ garment written as GLB): faces keep
+      // their order, so each input vertex takes the written position of its corners.
+      output_vertices = input.vertices;
+      for (Eigen::Index f = 0; f < input.faces.rows(); ++f)
+        for (int c = 0; c < 3; ++c)
+          output_vertices.row(input.faces(f, c)) = output.vertices.row(output.faces(f, c));
+      garment.faces = input.faces;
+    }
+    garment.no_fit.assign(no_fit.begin() + layer.first_face,
+                          no_fit.begin() + layer.first_face + layer.face_count);
+    garment.shapes.push_back(shape_of("input", input.vertices, data.avatar, input_crossing));
+    garment.shapes.push_back(shape_of("output", output_vertices, data.avatar,
+                                      marked_faces(checked, static_cast<int>(k))));
+    // On its source body the input keeps all of its ease, by definition.
+    const std::vector<double>& all_ease = report.ease.document_ratio;
+    if (report.ease.measure.vertices > 0 &&
+        static_cast<int>(all_ease.size()) >= layer.first_position + layer.position_count &&
+        layer.position_count == output_vertices.rows()) {
+      const std::vector<double> ease(
+          all_ease.begin() + layer.first_position,
+          all_ease.begin() + layer.first_position + layer.position_count);
+      garment.shapes.back().ease_ratio = ease;
+      std::vector<double>& source = garment.shapes.front().ease_ratio;
+      source.resize(ease.size());
+      for (std::size_t v = 0; v < ease.size(); ++v)
+        source[v] = std::isfinite(ease[v]) ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+    }
+    data.garments.push_back(std::move(garment));
   }
-  garment.no_fit = no_fit_faces(scene);
-  garment.shapes.push_back(shape_of("input", input.vertices, data.avatar, input_crossing));
-  garment.shapes.push_back(
-      shape_of("output", output_vertices, data.avatar, marked_faces(checked, 0)));
-  // On its source body the input keeps all of its ease, by definition.
-  const std::vector<double>& ease = report.ease.document_ratio;
-  if (report.ease.measure.vertices > 0 &&
-      static_cast<Eigen::Index>(ease.size()) == output_vertices.rows()) {
-    garment.shapes.back().ease_ratio = ease;
-    std::vector<double>& source = garment.shapes.front().ease_ratio;
-    source.resize(ease.size());
-    for (std::size_t v = 0; v < ease.size(); ++v)
-      source[v] = std::isfinite(ease[v]) ? 1.0 : std::numeric_limits<double>::quiet_NaN();
-  }
-  data.garments.push_back(std::move(garment));
   data.report = to_json(report);
   data.certificate = certificate.json;
   return data;

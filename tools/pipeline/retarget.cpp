@@ -20,6 +20,7 @@
 #include "tools/pipeline/stages/infer_stage.hpp"
 #include "tools/pipeline/stages/inflate_stage.hpp"
 #include "tools/pipeline/stages/normalize_stage.hpp"
+#include "tools/pipeline/stages/outfit_stage.hpp"
 #include "tools/pipeline/stages/read_stage.hpp"
 #include "tools/pipeline/stages/shrink_stage.hpp"
 #include "tools/pipeline/stages/solver_scene.hpp"
@@ -97,6 +98,20 @@ void record_certified(RetargetReport& report, const CertifyOutput& certified) {
     report.fit.min_distance =
         certified.certificate.validation.result.totals().smallest_avatar_clearance *
         report.normalize.scene_scale;
+}
+
+/// The outfit's report part: the stage's, with each layer's own files and shape.
+void record_outfit(RetargetReport& report, OutfitReport outfit, const Scene& scene,
+                   const WriteOutput& written, const std::vector<std::string>& recorded_paths,
+                   const CertifyOutput& certified) {
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const GarmentLayer& layer = scene.layers[k];
+    outfit.layers.push_back({layer.name, layer.path, layer.mesh, layer.face_count,
+                             recorded_paths[k], written.garments[k].mesh,
+                             certified.layer_shapes[k]});
+  }
+  report.seconds.certify += outfit.seconds;
+  report.outfit = std::move(outfit);
 }
 
 std::string no_valid_shrink_message(const NoValidShrinkError& e, const Scene& scene,
@@ -228,6 +243,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   ReadOutput read = run_read({options.inputs}, {options.limits, options.shrink_mode}, progress);
   Scene& scene = read.scene;
   result.report_path = folder.final_path("report.json");
+  const std::vector<int> given_order = resolve_layer_order(scene, options.layer_order);
   const NormalizeOutput normalized_scene = run_normalize(
       {scene, options.inputs}, {std::min(parameters.dhat, parameters.fit_support())}, progress);
   const NormalizedScene& normalized = normalized_scene.normalized;
@@ -272,24 +288,41 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const SolverScene& solver = solved.solver;
   const FitResult& fit = solved.fit.fit;
 
-  const WriteOutput written = run_write(
-      {scene, normalized, fit.garment, shrink.pierced_faces, distance_field, bound_skin_weights,
-       out.string()},
-      {options.format, options.allow_external_assets, options.skin_transfer, parameters.dhat},
-      progress);
+  const WriteOutput written =
+      run_write({scene, normalized, fit.garment, shrink.pierced_faces, distance_field,
+                 bound_skin_weights, out.string()},
+                {options.format, options.split, options.allow_external_assets,
+                 options.skin_transfer, parameters.dhat},
+                progress);
   report.shrink.pierced.opened_document_faces = written.opened_document_faces;
   report.skin = written.skin;
   report.seconds.write = written.seconds;
-  result.garment_path = folder.final_path(written.file_name);
+  std::vector<std::string> written_files;
+  std::vector<std::string> recorded_paths;
+  std::vector<std::string> written_meshes;
+  for (const WrittenGarment& garment : written.garments) {
+    written_files.push_back((out / garment.file_name).string());
+    recorded_paths.push_back(folder.final_path(garment.file_name));
+    written_meshes.push_back(garment.mesh);
+  }
+  result.garment_path =
+      written.file_name.empty() ? recorded_paths.front() : folder.final_path(written.file_name);
 
   const CertifyOutput certified_output =
       run_certify({options.inputs, scene, normalized, fit.garment, solver.fit_faces,
-                   report.ease.source_known ? &inferred.source_ease : nullptr,
-                   (out / written.file_name).string(), result.garment_path, report},
+                   report.ease.source_known ? &inferred.source_ease : nullptr, written_files,
+                   recorded_paths, written_meshes, report},
                   {options.shape_thresholds, options.quality, parameters.dhat}, progress);
   const Certificate& certificate = certified_output.certificate;
   write_certificate((out / "certificate.json").string(), certificate);
   record_certified(report, certified_output);
+  if (scene.layers.size() > 1) {
+    OutfitOutput outfit = run_outfit(
+        {scene, normalized, fit.garment, inferred.source_body ? &*inferred.source_body : nullptr,
+         certificate, out.string(), options.out_dir},
+        {given_order, options.write_avatar, {}}, progress);
+    record_outfit(report, outfit.report, scene, written, recorded_paths, certified_output);
+  }
   std::string summary = certify_summary(certificate, report, total.seconds());
   progress.log("certify", "{}", summary);
   Outcome status = report.certified() ? Outcome::kCertified : Outcome::kNotCertified;

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/skinning/skin_weight_transfer.hpp"
 #include "tools/pipeline/ease.hpp"
@@ -37,6 +38,14 @@ struct RetargetOptions {
   bool quiet = false;
   /// Written garment format, "obj" or "glb"; empty: the garment's input format.
   std::string format;
+  /// An outfit written as GLB: a file per garment instead of one file with a mesh each.
+  bool split = false;
+  /// An outfit: also write the avatar without the faces every garment hides
+  /// (hidden-avatar-faces.txt), skinned as it was.
+  bool write_avatar = false;
+  /// An outfit: the garments from inside to outside, by name (GarmentLayer::name) or file;
+  /// empty: measured on the source.
+  std::vector<std::string> layer_order;
   /// When a written GLB's skin takes the avatar's weights directly (see
   /// transfer_skin_weights).
   SkinTransferOptions skin_transfer;

@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <map>
+#include <set>
+
+#include <Eigen/Geometry>
 
 #include <fmt/format.h>
 
@@ -38,6 +42,127 @@ SimulationMesh load_surface(const std::string& path, const std::vector<std::stri
     warnings.push_back(fmt::format("{}: {} zero-area faces (repeated vertex) are not simulated",
                                    path, sim.collapsed_faces));
   return sim;
+}
+
+/// `document` appended to `into`: its positions, texture coordinates, normals, faces and
+/// statements after those already there.
+void append_document(ObjDocument& into, const ObjDocument& document) {
+  const auto positions = static_cast<int>(into.positions.rows());
+  const auto texcoords = static_cast<int>(into.texcoords.size());
+  const auto normals = static_cast<int>(into.normals.rows());
+  const auto faces = static_cast<int>(into.faces.size());
+  const auto stack = [](MatrixX3d& a, const MatrixX3d& b) {
+    MatrixX3d both(a.rows() + b.rows(), 3);
+    both << a, b;
+    a = std::move(both);
+  };
+  stack(into.positions, document.positions);
+  if (!into.position_extras.empty() || !document.position_extras.empty()) {
+    into.position_extras.resize(static_cast<std::size_t>(positions));
+    into.position_extras.insert(into.position_extras.end(), document.position_extras.begin(),
+                                document.position_extras.end());
+    into.position_extras.resize(static_cast<std::size_t>(into.positions.rows()));
+  }
+  into.texcoords.insert(into.texcoords.end(), document.texcoords.begin(), document.texcoords.end());
+  into.texcoord_arity.insert(into.texcoord_arity.end(), document.texcoord_arity.begin(),
+                             document.texcoord_arity.end());
+  stack(into.normals, document.normals);
+  for (auto face : document.faces) {
+    for (ObjCorner& corner : face) {
+      corner.position += positions;
+      if (corner.texcoord >= 0) corner.texcoord += texcoords;
+      if (corner.normal >= 0) corner.normal += normals;
+    }
+    into.faces.push_back(face);
+  }
+  for (ObjStatement statement : document.statements) {
+    statement.first_face += faces;
+    into.statements.push_back(std::move(statement));
+  }
+  for (const std::string& library : document.material_libraries)
+    if (std::find(into.material_libraries.begin(), into.material_libraries.end(), library) ==
+        into.material_libraries.end())
+      into.material_libraries.push_back(library);
+  into.warnings.insert(into.warnings.end(), document.warnings.begin(), document.warnings.end());
+}
+
+/// `sim` (of a document appended after `positions` positions and `faces` faces) appended
+/// to `into`, sharing no vertex with it.
+void append_simulation_mesh(SimulationMesh& into, const SimulationMesh& sim, int positions,
+                            int faces) {
+  const auto vertices = static_cast<int>(into.mesh.vertices.rows());
+  MatrixX3d v(into.mesh.vertices.rows() + sim.mesh.vertices.rows(), 3);
+  v << into.mesh.vertices, sim.mesh.vertices;
+  Eigen::MatrixX3i f(into.mesh.faces.rows() + sim.mesh.faces.rows(), 3);
+  f << into.mesh.faces, (sim.mesh.faces.array() + vertices).matrix();
+  into.mesh = {std::move(v), std::move(f)};
+  into.obj_to_sim.resize(static_cast<std::size_t>(positions), -1);
+  for (const int s : sim.obj_to_sim) into.obj_to_sim.push_back(s >= 0 ? s + vertices : -1);
+  for (const int p : sim.sim_to_obj) into.sim_to_obj.push_back(p + positions);
+  for (const int d : sim.face_to_obj) into.face_to_obj.push_back(d + faces);
+  into.collapsed_faces += sim.collapsed_faces;
+}
+
+/// The change of frame that puts `own` (a garment's source skeleton) onto `first` (the
+/// first garment's): the least-squares similarity of their joints, identity when they are
+/// the same.
+/// @throw InputError naming `path` when the skeletons do not correspond.
+Eigen::Matrix4d frame_onto(const Skeleton& own, const Skeleton& first, const std::string& path) {
+  check_skeletons_match(own, first, path);
+  if (own.joints == first.joints) return Eigen::Matrix4d::Identity();
+  return Eigen::umeyama(own.joints.transpose(), first.joints.transpose(), true);
+}
+
+/// When a garment's own source body is the first garment's body moved (the same vertices
+/// in order, up to a similarity), that similarity: exact where skeletons, which riggers
+/// place by hand, differ a little. Unset otherwise.
+std::optional<Eigen::Matrix4d> body_frame_onto(const std::string& own, const std::string& first,
+                                               const std::vector<std::string>& first_meshes) {
+  if (own.empty() || first.empty() || is_gltf_path(own)) return std::nullopt;
+  std::error_code error;
+  if (std::filesystem::equivalent(own, first, error)) return Eigen::Matrix4d::Identity();
+  const MatrixX3d a = read_surface_document(own).positions;
+  const MatrixX3d b = is_gltf_path(first) ? read_gltf_meshes(first, first_meshes).document.positions
+                                          : read_surface_document(first).positions;
+  if (a.rows() != b.rows() || a.rows() < 4) return std::nullopt;
+  if (a == b) return Eigen::Matrix4d::Identity();
+  const Eigen::Matrix4d t = Eigen::umeyama(a.transpose(), b.transpose(), true);
+  const Eigen::Affine3d map(t);
+  const double size = (b.colwise().maxCoeff() - b.colwise().minCoeff()).norm();
+  double worst = 0.0;
+  for (Eigen::Index v = 0; v < a.rows(); ++v)
+    worst = std::max(worst, (map * Vector3d(a.row(v).transpose()) - b.row(v).transpose()).norm());
+  constexpr double kSameBody = 1e-4;  // of the body's diagonal: rounding of exported files
+  if (!(worst <= kSameBody * size)) return std::nullopt;
+  return t;
+}
+
+/// Moves a layer's document and simulation mesh into the first garment's frame.
+void move_layer(const Eigen::Matrix4d& to_first_frame, GarmentLayer& layer, SimulationMesh& sim) {
+  layer.to_first_frame = to_first_frame;
+  if (to_first_frame == Eigen::Matrix4d::Identity()) return;
+  const Eigen::Affine3d to_first(to_first_frame);
+  for (Eigen::Index p = 0; p < layer.document.positions.rows(); ++p)
+    layer.document.positions.row(p) =
+        (to_first * Vector3d(layer.document.positions.row(p).transpose())).transpose();
+  for (Eigen::Index v = 0; v < sim.mesh.vertices.rows(); ++v)
+    sim.mesh.vertices.row(v) =
+        (to_first * Vector3d(sim.mesh.vertices.row(v).transpose())).transpose();
+}
+
+/// A layer's name from its mesh, else its file's stem, else (files of one stem, such as
+/// skirt/garment.obj and puffer/garment.obj) its folder's name; made unique among `taken`.
+std::string layer_name(const std::string& path, const std::string& mesh,
+                       const std::vector<std::string>& stems, std::set<std::string>& taken) {
+  const std::filesystem::path file(path);
+  std::string base = mesh.empty() ? file.stem().string() : mesh;
+  if (mesh.empty() && std::count(stems.begin(), stems.end(), base) > 1 &&
+      !file.parent_path().filename().empty())
+    base = file.parent_path().filename().string();
+  if (base.empty()) base = "garment";
+  std::string name = base;
+  for (int k = 2; !taken.insert(name).second; ++k) name = fmt::format("{}-{}", base, k);
+  return name;
 }
 
 /// The surface energy pairs the two faces of each edge, so the solver needs an
@@ -111,7 +236,84 @@ void skeletons_from_skins(const ScenePaths& paths, Scene& scene) {
           target_skin.weights(static_cast<Eigen::Index>(j), sim_to_obj[s]);
 }
 
+/// Reads every garment of the scene into its layers, and merges them into the scene's
+/// garment document and simulation mesh.
+void load_garments(const ScenePaths& paths, Scene& scene) {
+  std::set<std::string> names;
+  std::vector<std::string> stems{std::filesystem::path(paths.garment).stem().string()};
+  for (const GarmentPaths& more : paths.more_garments)
+    stems.push_back(std::filesystem::path(more.garment).stem().string());
+  std::optional<Skeleton> first_skeleton;
+  std::map<std::string, std::shared_ptr<const GltfModel>> model_of_file;
+  for (std::size_t k = 0; k <= paths.more_garments.size(); ++k) {
+    const GarmentPaths more = k == 0 ? GarmentPaths{} : paths.more_garments[k - 1];
+    const std::string& path = k == 0 ? paths.garment : more.garment;
+    const std::string& mesh = k == 0 ? paths.garment_mesh : more.garment_mesh;
+    if (path.empty()) throw InputError("", 0, "no garment file given");
+    GarmentLayer layer;
+    layer.path = path;
+    const std::vector<std::string> meshes =
+        mesh.empty() ? std::vector<std::string>{} : std::vector<std::string>{mesh};
+    SimulationMesh sim =
+        load_surface(path, meshes, "garment", layer.document, layer.gltf, scene.warnings);
+    if (layer.gltf) {
+      layer.mesh = layer.gltf->mesh_name;
+      // Meshes of one file share its materials and textures in a written GLB.
+      const auto [it, added] = model_of_file.emplace(path, layer.gltf->model);
+      if (!added) layer.gltf->model = it->second;
+    }
+    layer.name = layer_name(path, layer.mesh, stems, names);
+    if (k > 0) {
+      std::optional<Eigen::Matrix4d> to_first_frame =
+          body_frame_onto(more.source_body, paths.source_body, paths.source_body_meshes);
+      if (!to_first_frame && !more.source_skeleton.empty()) {
+        if (paths.source_skeleton.empty())
+          throw InputError(more.source_skeleton, 0,
+                           "a garment's own source skeleton needs the first garment's "
+                           "(--source-skeleton before the garments' own)");
+        if (!first_skeleton) first_skeleton = read_skeleton(paths.source_skeleton);
+        to_first_frame =
+            frame_onto(read_skeleton(more.source_skeleton), *first_skeleton, more.source_skeleton);
+      }
+      if (to_first_frame) move_layer(*to_first_frame, layer, sim);
+    }
+    if (k == 0) {
+      scene.garment_document = layer.document;
+      scene.garment_gltf = layer.gltf;
+      scene.garment = std::move(sim);
+      layer.position_count = static_cast<int>(layer.document.positions.rows());
+      layer.face_count = static_cast<int>(layer.document.faces.size());
+    } else {
+      layer.first_position = static_cast<int>(scene.garment_document.positions.rows());
+      layer.first_face = static_cast<int>(scene.garment_document.faces.size());
+      layer.position_count = static_cast<int>(layer.document.positions.rows());
+      layer.face_count = static_cast<int>(layer.document.faces.size());
+      append_document(scene.garment_document, layer.document);
+      append_simulation_mesh(scene.garment, sim, layer.first_position, layer.first_face);
+    }
+    scene.layers.push_back(std::move(layer));
+  }
+}
+
 }  // namespace
+
+std::vector<int> layer_of_document_faces(const Scene& scene) {
+  std::vector<int> layer(scene.garment_document.faces.size(), 0);
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const GarmentLayer& l = scene.layers[k];
+    std::fill_n(layer.begin() + l.first_face, l.face_count, static_cast<int>(k));
+  }
+  return layer;
+}
+
+std::vector<int> layer_of_garment_faces(const Scene& scene) {
+  const std::vector<int> of_document = layer_of_document_faces(scene);
+  std::vector<int> layer;
+  layer.reserve(scene.garment.face_to_obj.size());
+  for (const int f : scene.garment.face_to_obj)
+    layer.push_back(of_document[static_cast<std::size_t>(f)]);
+  return layer;
+}
 
 std::vector<std::string> input_files(const ScenePaths& paths) {
   std::vector<std::string> files;
@@ -119,6 +321,11 @@ std::vector<std::string> input_files(const ScenePaths& paths) {
        {&paths.garment, &paths.avatar, &paths.source_skeleton, &paths.target_skeleton,
         &paths.skin_weights, &paths.no_fit, &paths.joint_map, &paths.source_body})
     if (!path->empty()) files.push_back(*path);
+  for (const GarmentPaths& more : paths.more_garments)
+    for (const std::string* path :
+         {&more.garment, &more.no_fit, &more.source_skeleton, &more.source_body})
+      if (!path->empty() && std::find(files.begin(), files.end(), *path) == files.end())
+        files.push_back(*path);
   return files;
 }
 
@@ -155,11 +362,7 @@ Scene load_scene(const ScenePaths& paths) {
   if (paths.garment.empty()) throw InputError("", 0, "no garment file given");
   if (paths.avatar.empty()) throw InputError("", 0, "no avatar file given");
   Scene scene;
-  const std::vector<std::string> garment_mesh = paths.garment_mesh.empty()
-                                                    ? std::vector<std::string>{}
-                                                    : std::vector<std::string>{paths.garment_mesh};
-  scene.garment = load_surface(paths.garment, garment_mesh, "garment", scene.garment_document,
-                               scene.garment_gltf, scene.warnings);
+  load_garments(paths, scene);
   scene.split_edges = split_non_manifold_edges(scene.garment, scene.garment_ties);
   if (scene.split_edges > 0)
     scene.warnings.push_back(fmt::format(
@@ -192,13 +395,17 @@ Scene load_scene(const ScenePaths& paths) {
   }
   skeletons_from_skins(paths, scene);
 
-  if (!paths.no_fit.empty()) {
-    const auto ids =
-        read_vertex_list(paths.no_fit, static_cast<int>(scene.garment_document.positions.rows()));
-    for (const int id : ids) {
-      const int welded = scene.garment.obj_to_sim[static_cast<std::size_t>(id)];
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const std::string& no_fit = k == 0 ? paths.no_fit : paths.more_garments[k - 1].no_fit;
+    if (no_fit.empty()) continue;
+    const GarmentLayer& layer = scene.layers[k];
+    for (const int id : read_vertex_list(no_fit, layer.position_count)) {
+      const int welded =
+          scene.garment.obj_to_sim[static_cast<std::size_t>(layer.first_position + id)];
       if (welded >= 0) scene.no_fit.push_back(welded);
     }
+  }
+  if (!scene.no_fit.empty()) {
     std::sort(scene.no_fit.begin(), scene.no_fit.end());
     scene.no_fit.erase(std::unique(scene.no_fit.begin(), scene.no_fit.end()), scene.no_fit.end());
   }

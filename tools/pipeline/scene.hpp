@@ -14,6 +14,18 @@
 
 namespace gr {
 
+/// A garment of an outfit beyond the first (ScenePaths::more_garments): its own file and
+/// what belongs to it alone.
+struct GarmentPaths {
+  std::string garment;
+  std::string garment_mesh{};  ///< glTF: the mesh (or node) to read; empty: the default
+  std::string no_fit{};        ///< 0-based vertex ids of this garment's document
+  /// Its source skeleton, when its file is in another frame than the first garment's: it is
+  /// moved onto the first garment's source skeleton. Empty: the first garment's frame.
+  std::string source_skeleton{};
+  std::string source_body{};  ///< the body it was made on, in its own frame
+};
+
 /// Where a retargeting scene's files are. Only garment and avatar are required.
 struct ScenePaths {
   std::string garment;
@@ -30,6 +42,27 @@ struct ScenePaths {
   std::string source_body{};  ///< the body the garment was made on, in the garment's frame
   /// glTF source body: its meshes, merged; empty: every mesh its skin drives but the garment
   std::vector<std::string> source_body_meshes{};
+  /// An outfit: the garments worn with the first, each a layer (any order; the run
+  /// measures inside to outside). Empty: one garment.
+  std::vector<GarmentPaths> more_garments{};
+};
+
+/// One garment of an outfit as read: its own document, and where it lies in the scene's
+/// merged garment document.
+struct GarmentLayer {
+  std::string name;  ///< its glTF mesh's name, else its file's stem; unique in the scene
+  std::string path;
+  std::string mesh;  ///< the glTF mesh read; empty for OBJ
+  /// Its document, positions in the first garment's frame.
+  ObjDocument document;
+  std::optional<GltfDocument> gltf;
+  /// Its file's frame → the first garment's (identity for the first, and for a garment
+  /// given without a source skeleton of its own).
+  Eigen::Matrix4d to_first_frame = Eigen::Matrix4d::Identity();
+  int first_position = 0;  ///< its first position in Scene::garment_document
+  int position_count = 0;
+  int first_face = 0;  ///< its first face in Scene::garment_document
+  int face_count = 0;
 };
 
 /// A scene as read and checked, in the files' own units and frames.
@@ -51,10 +84,18 @@ struct Scene {
   std::vector<std::string> warnings;
   std::optional<GltfDocument> garment_gltf;  ///< set when the garment was read from glTF
   std::optional<GltfDocument> avatar_gltf;   ///< set when the avatar was read from glTF
+  /// The garments of the scene in the order given, merged in that order into
+  /// garment_document and garment (no vertex shared between two); one for one garment.
+  std::vector<GarmentLayer> layers;
   /// The avatar's skin over its whole skeleton, weights #J×#avatar document positions:
   /// its glTF skin, else the target skeleton with the skin weights file; unset without.
   std::optional<SkinBinding> avatar_skin;
 };
+
+/// Per face of `document` (Scene::garment_document), the layer it belongs to.
+std::vector<int> layer_of_document_faces(const Scene& scene);
+/// Per face of the simulation garment (Scene::garment), the layer it belongs to.
+std::vector<int> layer_of_garment_faces(const Scene& scene);
 
 /// Every input file the paths name (the empty ones left out), garment and avatar first.
 std::vector<std::string> input_files(const ScenePaths& paths);

@@ -417,6 +417,13 @@ std::string toolbar_html(const ReportPageData& data) {
     out += "<label><input type=\"checkbox\" id=\"gr-nofit\" checked> no-fit region</label>\n";
   if (has_ease(data))
     out += "<label><input type=\"checkbox\" id=\"gr-ease\"> colour by ease kept</label>\n";
+  // An outfit: each garment (layer) can be hidden to see the one under it.
+  if (data.garments.size() > 1)
+    for (std::size_t g = 0; g < data.garments.size(); ++g)
+      out += fmt::format(
+          "<label><input type=\"checkbox\" class=\"garment-toggle\" data-garment=\"{}\" "
+          "id=\"gr-garment-{}\" checked> {}</label>\n",
+          g, g, html_escape(data.garments[g].name));
   out +=
       "<label><input type=\"checkbox\" id=\"gr-body\" checked> avatar</label>\n"
       "<label><input type=\"checkbox\" id=\"gr-seethrough\"> see-through avatar</label>\n"

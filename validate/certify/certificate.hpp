@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,15 @@ Certificate certify_garment(const std::string& garment_path, const std::string& 
                             const nlohmann::json& extra = nlohmann::json::object(),
                             const ValidationOptions& options = {},
                             const std::string& recorded_garment_path = {});
+
+/// certify_garment for an outfit: every garment file (each with its mesh of a glTF file in
+/// options.garment_meshes) checked as a layer, against the avatar, itself and every other
+/// layer. `recorded_garment_paths`, when not empty, gives each garment's recorded path.
+/// @throw InputError when a file is missing, malformed or has no face.
+Certificate certify_outfit(const std::vector<std::string>& garment_paths,
+                           const std::string& avatar_path, const nlohmann::json& extra,
+                           const ValidationOptions& options,
+                           const std::vector<std::string>& recorded_garment_paths);
 
 /// Writes `certificate.json` (any path) atomically.
 /// @throw OutputError when the file cannot be written.

@@ -19,8 +19,12 @@ struct CertifyInput {
   const std::vector<bool>& fit_faces;
   /// The garment's source ease, for the ease measure; null: not measured.
   const SourceEase* source_ease = nullptr;
-  std::string written_file;   ///< the garment file as written (staging)
-  std::string recorded_path;  ///< the path the certificate names (the file's final place)
+  /// Per layer (Scene::layers), the garment file as written (staging), the path the
+  /// certificate names (the file's final place) and its mesh in a glTF file (empty: its
+  /// only one). One garment has one entry.
+  std::vector<std::string> written_files;
+  std::vector<std::string> recorded_paths;
+  std::vector<std::string> written_meshes;
   /// The run's report so far: its parameters, inherited pairs and opened faces go into
   /// the certificate.
   const RetargetReport& report;
@@ -40,6 +44,9 @@ struct CertifyOutput {
   /// none; empty without a source ease.
   std::vector<double> ease_document_ratio;
   int inherited_still_crossing = 0;  ///< of the inherited pairs, those still crossing
+  /// An outfit: each layer's own change of shape (Scene::layers' order); empty for one
+  /// garment.
+  std::vector<ShapeChange> layer_shapes;
   double seconds = 0.0;
 };
 

@@ -57,10 +57,10 @@ SourceEase infer_ease(const InferInput& input, const InferOptions& options,
 InferOutput run_infer(const InferInput& input, const InferOptions& options, Progress& progress) {
   InferOutput out;
   // The source body gives the no-fit inference and the ease: read once.
-  std::optional<TriangleMesh> source_body;
-  if (!input.paths.source_body.empty())
+  std::optional<TriangleMesh>& source_body = out.source_body;
+  if (source_body_given(input.paths))
     source_body = read_source_body(input.paths, input.scene, input.normalized);
-  out.no_fit = no_fit_for_run(input.scene, input.normalized, !input.paths.no_fit.empty(),
+  out.no_fit = no_fit_for_run(input.scene, input.normalized, no_fit_given(input.paths),
                               source_body ? &*source_body : nullptr, options.skirt, options.out_dir,
                               options.inference, out.inferred);
   out.source_ease = infer_ease(input, options, out.no_fit, source_body ? &*source_body : nullptr,

@@ -33,6 +33,8 @@ struct InferOutput {
   std::vector<int> no_fit;
   /// The garment's ease on its source body (normalized units); empty without one.
   SourceEase source_ease;
+  /// The source body (normalized, in the garment's frame) when one was given.
+  std::optional<TriangleMesh> source_body;
   /// Skin weights for the skeleton shrink (#J×#welded avatar vertices): given, bound, or
   /// empty (nearest bone).
   Eigen::MatrixXd skin_weights;

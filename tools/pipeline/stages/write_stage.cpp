@@ -1,6 +1,7 @@
 #include "tools/pipeline/stages/write_stage.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <optional>
 
@@ -57,20 +58,23 @@ Eigen::MatrixXd garment_skin_weights(const Scene& scene, const SkinBinding& skin
   return on_document_positions(transfer.weights.transpose(), scene.garment.obj_to_sim);
 }
 
-/// Writes the garment (normalized #Vg×3) as a GLB in the avatar's frame and units, skinned
-/// over the avatar's skeleton when the avatar has one.
-void write_garment_glb(const WriteInput& input, const WriteOptions& options, WriteOutput& out,
-                       Progress& progress) {
-  const Scene& scene = input.scene;
-  const Normalization& n = input.normalized.normalization;
-  const std::string path = (fs::path(input.out_dir) / out.file_name).string();
-  const MatrixX3d welded = n.avatar_to_scene.invert_rows(input.garment);
-  const MatrixX3d positions = export_positions(
-      scene.garment_document, scene.garment, welded,
+/// The garment document's positions (#P×3) in the avatar's frame and units.
+MatrixX3d document_positions(const Scene& scene, const NormalizedScene& normalized,
+                             const Eigen::Ref<const MatrixX3d>& garment) {
+  const Normalization& n = normalized.normalization;
+  return export_positions(
+      scene.garment_document, scene.garment, n.avatar_to_scene.invert_rows(garment),
       [&](const Vector3d& p) { return n.avatar_to_scene.invert(n.garment_to_scene.apply(p)); });
-  const GltfDocument* source = scene.garment_gltf ? &*scene.garment_gltf : nullptr;
-  if (!source && !scene.garment_document.material_libraries.empty())
-    progress.warn("the OBJ garment's materials are not carried into the GLB (UVs are)");
+}
+
+/// The skin of a written GLB over the garment document's positions (#J×#P weights): the
+/// avatar's skeleton with its weights carried to the garment; unset (with a warning)
+/// when the avatar has no skeleton.
+std::optional<SkinBinding> garment_skin(const WriteInput& input, const WriteOptions& options,
+                                        WriteOutput& out, Progress& progress) {
+  const Scene& scene = input.scene;
+  const MatrixX3d welded =
+      input.normalized.normalization.avatar_to_scene.invert_rows(input.garment);
   std::optional<SkinBinding> avatar_skin = avatar_skin_for_export(scene);
   const bool bound = !scene.avatar_skin && !scene.avatar_gltf && scene.target_skeleton &&
                      input.bound_skin_weights.size() != 0;
@@ -82,8 +86,7 @@ void write_garment_glb(const WriteInput& input, const WriteOptions& options, Wri
     progress.warn(
         "the avatar has no skeleton (glTF skin or --target-skeleton): the GLB is written "
         "without a skin");
-    write_glb(path, scene.garment_document, source, positions, nullptr);
-    return;
+    return std::nullopt;
   }
   if (!scene.avatar_skin && !bound)
     progress.warn(
@@ -91,7 +94,99 @@ void write_garment_glb(const WriteInput& input, const WriteOptions& options, Wri
         "to their nearest bones");
   SkinBinding skin = *avatar_skin;
   skin.weights = garment_skin_weights(scene, *avatar_skin, welded, options, out.skin, progress);
-  write_glb(path, scene.garment_document, source, positions, &skin);
+  return skin;
+}
+
+/// Writes the garment (normalized #Vg×3) as a GLB in the avatar's frame and units, skinned
+/// over the avatar's skeleton when the avatar has one.
+void write_garment_glb(const WriteInput& input, const WriteOptions& options, WriteOutput& out,
+                       Progress& progress) {
+  const Scene& scene = input.scene;
+  const std::string path = (fs::path(input.out_dir) / out.file_name).string();
+  const MatrixX3d positions = document_positions(scene, input.normalized, input.garment);
+  const GltfDocument* source = scene.garment_gltf ? &*scene.garment_gltf : nullptr;
+  if (!source && !scene.garment_document.material_libraries.empty())
+    progress.warn("the OBJ garment's materials are not carried into the GLB (UVs are)");
+  const std::optional<SkinBinding> skin = garment_skin(input, options, out, progress);
+  write_glb(path, scene.garment_document, source, positions, skin ? &*skin : nullptr);
+}
+
+/// A layer's file stem: its name with only letters, digits, '-', '_' and '.', never one of
+/// the result folder's own names.
+std::string layer_file_stem(const std::string& name) {
+  std::string stem;
+  for (const char c : name)
+    stem += (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_' || c == '.')
+                ? c
+                : '_';
+  if (stem.empty() || stem.front() == '.') stem = "garment" + stem;
+  for (const char* taken : {"avatar", "garment", "outfit", "report", "certificate", "no-fit"})
+    if (stem == taken) stem += "-garment";
+  return stem;
+}
+
+/// Writes each layer of an outfit: one GLB with a mesh each (or, split, a GLB each), or an
+/// OBJ each.
+void write_outfit(const WriteInput& input, const WriteOptions& options, bool glb, WriteOutput& out,
+                  Progress& progress) {
+  const Scene& scene = input.scene;
+  const MatrixX3d positions = document_positions(scene, input.normalized, input.garment);
+  std::optional<SkinBinding> skin;
+  if (glb) skin = garment_skin(input, options, out, progress);
+  std::vector<GlbMesh> meshes;
+  std::vector<SkinBinding> skins(scene.layers.size());
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const GarmentLayer& layer = scene.layers[k];
+    const MatrixX3d own = positions.middleRows(layer.first_position, layer.position_count);
+    const std::string stem = layer_file_stem(layer.name);
+    if (!glb) {
+      out.garments.push_back({stem + ".obj", ""});
+      for (const auto& warning :
+           copy_material_files(layer.document, input.out_dir, options.allow_external_assets))
+        progress.warn(warning);
+      write_obj((fs::path(input.out_dir) / (stem + ".obj")).string(), layer.document, own);
+      continue;
+    }
+    if (!layer.gltf && !layer.document.material_libraries.empty())
+      progress.warn(
+          fmt::format("{}: the OBJ garment's materials are not carried into the GLB "
+                      "(UVs are)",
+                      layer.path));
+    if (skin) {
+      skins[k] = *skin;
+      skins[k].weights = skin->weights.middleCols(layer.first_position, layer.position_count);
+    }
+    GlbMesh mesh{layer.name, &layer.document, layer.gltf ? &*layer.gltf : nullptr, own,
+                 skin ? &skins[k] : nullptr};
+    if (options.split) {
+      out.garments.push_back({stem + ".glb", ""});
+      write_glb_meshes((fs::path(input.out_dir) / (stem + ".glb")).string(), {mesh});
+    } else {
+      out.garments.push_back({"outfit.glb", layer.name});
+      meshes.push_back(std::move(mesh));
+    }
+  }
+  if (!meshes.empty()) {
+    out.file_name = "outfit.glb";
+    write_glb_meshes((fs::path(input.out_dir) / out.file_name).string(), meshes);
+  }
+}
+
+/// Removes document faces (sorted ids of the merged garment document) from an outfit's
+/// layers and from the merged document, whose layer ranges follow.
+void remove_layer_faces(Scene& scene, const std::vector<int>& document_faces) {
+  remove_document_faces(scene.garment_document, nullptr, document_faces);
+  int first_face = 0;
+  for (GarmentLayer& layer : scene.layers) {
+    std::vector<int> own;
+    for (const int f : document_faces)
+      if (f >= layer.first_face && f < layer.first_face + layer.face_count)
+        own.push_back(f - layer.first_face);
+    remove_document_faces(layer.document, layer.gltf ? &*layer.gltf : nullptr, own);
+    layer.first_face = first_face;
+    layer.face_count = static_cast<int>(layer.document.faces.size());
+    first_face += layer.face_count;
+  }
 }
 
 /// The pierced faces the avatar still passes through or holds at the end leave the
@@ -109,8 +204,15 @@ std::vector<int> open_pierced_faces(const WriteInput& input, const WriteOptions&
   std::sort(document_faces.begin(), document_faces.end());
   document_faces.erase(std::unique(document_faces.begin(), document_faces.end()),
                        document_faces.end());
-  remove_document_faces(scene.garment_document, scene.garment_gltf ? &*scene.garment_gltf : nullptr,
-                        document_faces);
+  if (scene.layers.size() == 1) {
+    remove_document_faces(scene.garment_document,
+                          scene.garment_gltf ? &*scene.garment_gltf : nullptr, document_faces);
+    scene.layers[0].document = scene.garment_document;
+    scene.layers[0].gltf = scene.garment_gltf;
+    scene.layers[0].face_count = static_cast<int>(scene.garment_document.faces.size());
+  } else {
+    remove_layer_faces(scene, document_faces);
+  }
   progress.log("open",
                "{} of the {} faces left out of the avatar contact still meet the "
                "avatar: left out of the written garment",
@@ -128,11 +230,7 @@ std::vector<int> open_pierced_faces(const WriteInput& input, const WriteOptions&
 void write_garment_obj(const std::string& path, const Scene& scene,
                        const NormalizedScene& normalized,
                        const Eigen::Ref<const MatrixX3d>& garment) {
-  const Normalization& n = normalized.normalization;
-  const MatrixX3d positions = export_positions(
-      scene.garment_document, scene.garment, n.avatar_to_scene.invert_rows(garment),
-      [&](const Vector3d& p) { return n.avatar_to_scene.invert(n.garment_to_scene.apply(p)); });
-  write_obj(path, scene.garment_document, positions);
+  write_obj(path, scene.garment_document, document_positions(scene, normalized, garment));
 }
 
 void write_avatar_obj(const std::string& path, const Scene& scene,
@@ -151,13 +249,20 @@ WriteOutput run_write(const WriteInput& input, const WriteOptions& options, Prog
   const StageTimer timer;
   const bool glb =
       options.format.empty() ? input.scene.garment_gltf.has_value() : options.format == "glb";
+  if (input.scene.layers.size() > 1) {
+    write_outfit(input, options, glb, out, progress);
+    out.seconds = timer.seconds();
+    return out;
+  }
   if (glb) {
     out.file_name = "garment.glb";
+    out.garments = {{out.file_name, ""}};
     write_garment_glb(input, options, out, progress);
     out.seconds = timer.seconds();
     return out;
   }
   out.file_name = "garment.obj";
+  out.garments = {{out.file_name, ""}};
   for (const auto& warning : copy_material_files(input.scene.garment_document, input.out_dir,
                                                  options.allow_external_assets))
     progress.warn(warning);

@@ -26,14 +26,27 @@ struct WriteInput {
 
 struct WriteOptions {
   std::string format;  ///< "obj" or "glb"; empty: the garment's input format
+  /// An outfit written as GLB: a file per garment instead of one with a mesh each.
+  bool split = false;
   bool allow_external_assets = false;
   SkinTransferOptions skin_transfer;
   double dhat = RetargetParameters{}
                     .dhat;  ///< pierced faces this close to the avatar are opened (normalized)
 };
 
+/// One written garment file, and the mesh in it that is the garment (glTF; empty: the
+/// whole file).
+struct WrittenGarment {
+  std::string file_name;  ///< in out_dir
+  std::string mesh;
+};
+
 struct WriteOutput {
-  std::string file_name;  ///< "garment.obj" or "garment.glb", in out_dir
+  /// One garment: "garment.obj" or "garment.glb"; an outfit: "outfit.glb", or empty when
+  /// each garment has its file (see garments).
+  std::string file_name;
+  /// Per layer (Scene::layers' order), where it was written.
+  std::vector<WrittenGarment> garments;
   /// Pierced faces the avatar still passes through or holds at the end, left out of the
   /// written garment (input face ids, sorted).
   std::vector<int> opened_document_faces;
@@ -41,7 +54,10 @@ struct WriteOutput {
   double seconds = 0.0;
 };
 
-/// Write: the garment in the avatar's frame and units, as the input's document (vertex
+/// Write: the garment in the avatar's frame and units,
+/// An outfit (several layers) is written as one GLB with a mesh (and skin) per garment,
+/// named by its layer, or with options.split, or as OBJ, as a file per garment
+/// (`<layer name>.glb|obj`). as the input's document (vertex
 /// order, UVs, groups, materials): an OBJ with its material files, or a GLB skinned over
 /// the avatar's skeleton when the avatar has one. Pierced faces still meeting the avatar
 /// are opened first, so that what is written is free of it.

@@ -304,6 +304,13 @@ function start() {
     highlightNoFit = event.target.checked;
     setShape(shapeIndex);
   });
+  // Only outfit pages have a box per garment.
+  for (const box of document.querySelectorAll('.garment-toggle')) {
+    box.addEventListener('change', (event) => {
+      garments[Number(event.target.dataset.garment)].mesh.visible = event.target.checked;
+      render();
+    });
+  }
   document.getElementById('gr-body').addEventListener('change', (event) => {
     avatar.visible = event.target.checked;
     render();

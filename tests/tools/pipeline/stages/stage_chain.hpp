@@ -100,8 +100,16 @@ struct StageChain {
   const CertifyOutput& certify() {
     if (!certify_) {
       const std::string file = (out_dir / write().file_name).string();
-      certify_ = run_certify({paths, read().scene, normalize().normalized, fit().fit.garment,
-                              solver().fit_faces, nullptr, file, file, report},
+      certify_ = run_certify({paths,
+                              read().scene,
+                              normalize().normalized,
+                              fit().fit.garment,
+                              solver().fit_faces,
+                              nullptr,
+                              {file},
+                              {file},
+                              {""},
+                              report},
                              {}, progress);
     }
     return *certify_;

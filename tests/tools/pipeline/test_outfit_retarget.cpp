@@ -1,0 +1,120 @@
+// Outfits: several garments retargeted together as layers, certified as a whole.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/common/errors.hpp"
+#include "core/io/mesh_file.hpp"
+#include "core/mesh/primitives.hpp"
+#include "extremes_support.hpp"
+
+namespace gr {
+namespace {
+
+/// A capsule-like body along z: a sphere stretched to `half_length`, of `radius` around.
+TriangleMesh capsule_body(double radius, double half_length) {
+  TriangleMesh body = icosphere(3, 1.0);
+  body.vertices.col(0) *= radius;
+  body.vertices.col(1) *= radius;
+  body.vertices.col(2) *= half_length;
+  return body;
+}
+
+/// Three sleeves nested around a capsule of radius 0.3, written beside it, and a fatter
+/// target capsule: the sleeves (radii 0.32, 0.34, 0.36) must grow around it in their order.
+struct NestedSleeves {
+  std::filesystem::path dir;
+  std::vector<std::string> sleeves;  ///< inner, middle, outer
+  std::string source_body;
+  std::string avatar;
+};
+
+NestedSleeves nested_sleeves(const std::string& name) {
+  NestedSleeves scene;
+  scene.dir = test::fresh_temp_dir(name);
+  const char* names[] = {"inner", "middle", "outer"};
+  const double radii[] = {0.32, 0.34, 0.36};
+  for (int k = 0; k < 3; ++k) {
+    const std::string path = (scene.dir / (std::string(names[k]) + ".obj")).string();
+    write_obj(path, open_cylinder(radii[k], -0.5, 0.5, 12, 32));
+    scene.sleeves.push_back(path);
+  }
+  scene.source_body = (scene.dir / "source_body.obj").string();
+  write_obj(scene.source_body, capsule_body(0.3, 1.2));
+  scene.avatar = (scene.dir / "avatar.obj").string();
+  write_obj(scene.avatar, capsule_body(0.31, 1.2));
+  return scene;
+}
+
+/// Options for the sleeves given in `order` (indices into NestedSleeves::sleeves).
+RetargetOptions outfit_options(const NestedSleeves& scene, const std::vector<int>& order) {
+  RetargetOptions options =
+      test::quiet_options(scene.sleeves[static_cast<std::size_t>(order[0])], scene.avatar,
+                          scene.dir / "out");
+  for (std::size_t k = 1; k < order.size(); ++k)
+    options.inputs.more_garments.push_back({scene.sleeves[static_cast<std::size_t>(order[k])]});
+  options.inputs.source_body = scene.source_body;
+  options.overrides.set("voxel_size", test::kSyntheticVoxelSize);
+  options.overrides.set("max_newton_iterations", test::kSyntheticNewtonCap);
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order",
+          "[pipeline][outfit]") {
+  const NestedSleeves scene = nested_sleeves("outfit_sleeves");
+  // Given out of order: the run measures inside to outside on the source.
+  const RetargetResult result = test::run_and_check(outfit_options(scene, {1, 2, 0}));
+  INFO(result.message);
+  REQUIRE(result.status == Outcome::kCertified);
+  const RetargetReport& r = result.report;
+  REQUIRE(r.outfit.has_value());
+  const OutfitReport& outfit = *r.outfit;
+  CHECK(outfit.order_from == "measured");
+  CHECK(outfit.order == std::vector<std::string>{"inner", "middle", "outer"});
+  CHECK(outfit.source.rays_meeting_layers > 0);
+  CHECK(outfit.source.out_of_order == 0);
+  CHECK(outfit.result.rays_meeting_layers > 0);
+  CHECK(outfit.result.out_of_order == 0);
+  CHECK(outfit.order_kept);
+  CHECK(outfit.layer_intersections == 0);
+  REQUIRE(outfit.layers.size() == 3);
+  for (const OutfitLayerReport& layer : outfit.layers) {
+    INFO(layer.name);
+    CHECK(std::filesystem::exists(layer.written));
+    CHECK(layer.shape.mean_edge_change <= 0.15);
+  }
+  // Every garment against every other, in the certificate.
+  const nlohmann::json certificate =
+      nlohmann::json::parse(std::ifstream(scene.dir / "out" / "certificate.json"));
+  CHECK(certificate["garment_pairs"].size() == 3);
+  CHECK(certificate["garments"].size() == 3);
+  // The body under the middle of the sleeves is hidden; its ends are not.
+  CHECK(outfit.hidden_faces > 0);
+  CHECK(outfit.hidden_faces < outfit.avatar_faces / 2);
+  CHECK(std::filesystem::exists(scene.dir / "out" / "hidden-avatar-faces.txt"));
+}
+
+TEST_CASE("outfit: a given layer order is used, and one the result contradicts is reported",
+          "[pipeline][outfit]") {
+  const NestedSleeves scene = nested_sleeves("outfit_given_order");
+  RetargetOptions options = outfit_options(scene, {0, 1, 2});
+  options.layer_order = {"outer", "middle", "inner"};
+  const RetargetResult result = test::run_and_check(options);
+  REQUIRE(result.report.outfit.has_value());
+  const OutfitReport& outfit = *result.report.outfit;
+  CHECK(outfit.order_from == "given");
+  CHECK(outfit.order == std::vector<std::string>{"outer", "middle", "inner"});
+  // Every ray meets the inner sleeve first: the order given is contradicted everywhere.
+  CHECK(outfit.source.out_of_order == outfit.source.rays_meeting_layers);
+  CHECK(outfit.result.out_of_order > 0);
+
+  options.layer_order = {"outer", "nowhere", "inner"};
+  CHECK_THROWS_AS(run_retarget(options), InputError);
+}
+
+}  // namespace gr
