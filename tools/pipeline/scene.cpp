@@ -307,6 +307,7 @@ std::vector<int> layer_of_document_faces(const Scene& scene) {
 }
 
 std::vector<int> layer_of_garment_faces(const Scene& scene) {
+  if (!scene.garment_face_layer.empty()) return scene.garment_face_layer;
   const std::vector<int> of_document = layer_of_document_faces(scene);
   std::vector<int> layer;
   layer.reserve(scene.garment.face_to_obj.size());
@@ -363,6 +364,7 @@ Scene load_scene(const ScenePaths& paths) {
   if (paths.avatar.empty()) throw InputError("", 0, "no avatar file given");
   Scene scene;
   load_garments(paths, scene);
+  scene.garment_face_layer = layer_of_garment_faces(scene);
   scene.split_edges = split_non_manifold_edges(scene.garment, scene.garment_ties);
   if (scene.split_edges > 0)
     scene.warnings.push_back(fmt::format(

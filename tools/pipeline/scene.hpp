@@ -87,6 +87,9 @@ struct Scene {
   /// The garments of the scene in the order given, merged in that order into
   /// garment_document and garment (no vertex shared between two); one for one garment.
   std::vector<GarmentLayer> layers;
+  /// Per simulation garment face, its layer (fixed when read: the write's opened faces
+  /// leave the document, not the simulation mesh).
+  std::vector<int> garment_face_layer;
   /// The avatar's skin over its whole skeleton, weights #J×#avatar document positions:
   /// its glTF skin, else the target skeleton with the skin weights file; unset without.
   std::optional<SkinBinding> avatar_skin;
@@ -94,7 +97,8 @@ struct Scene {
 
 /// Per face of `document` (Scene::garment_document), the layer it belongs to.
 std::vector<int> layer_of_document_faces(const Scene& scene);
-/// Per face of the simulation garment (Scene::garment), the layer it belongs to.
+/// Per face of the simulation garment (Scene::garment), the layer it belongs to
+/// (Scene::garment_face_layer).
 std::vector<int> layer_of_garment_faces(const Scene& scene);
 
 /// Every input file the paths name (the empty ones left out), garment and avatar first.

@@ -51,9 +51,8 @@ NestedSleeves nested_sleeves(const std::string& name) {
 
 /// Options for the sleeves given in `order` (indices into NestedSleeves::sleeves).
 RetargetOptions outfit_options(const NestedSleeves& scene, const std::vector<int>& order) {
-  RetargetOptions options =
-      test::quiet_options(scene.sleeves[static_cast<std::size_t>(order[0])], scene.avatar,
-                          scene.dir / "out");
+  RetargetOptions options = test::quiet_options(scene.sleeves[static_cast<std::size_t>(order[0])],
+                                                scene.avatar, scene.dir / "out");
   for (std::size_t k = 1; k < order.size(); ++k)
     options.inputs.more_garments.push_back({scene.sleeves[static_cast<std::size_t>(order[k])]});
   options.inputs.source_body = scene.source_body;

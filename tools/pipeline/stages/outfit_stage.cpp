@@ -103,27 +103,26 @@ OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options,
   if (order.empty()) {
     std::vector<int> listed(static_cast<std::size_t>(layer_count));
     std::iota(listed.begin(), listed.end(), 0);
-    order = on_source.rays_meeting_several > 0
-                ? layer_order_from_votes(on_source.before, listed)
-                : listed;
+    order = on_source.rays_meeting_several > 0 ? layer_order_from_votes(on_source.before, listed)
+                                               : listed;
     report.order_from = on_source.rays_meeting_several > 0 ? "measured" : "given";
   }
   for (const int k : order) report.order.push_back(scene.layers[static_cast<std::size_t>(k)].name);
   report.source = order_report(on_source, order);
 
   // The order on the result, from the target's bones (else the avatar's faces).
-  const LayeredOutfit result_outfit{{input.garment, normalized.garment.faces}, face_layer,
-                                    layer_count};
-  const LayerOrderMeasure on_result =
-      measure_layer_order(result_outfit, normalized.avatar,
-                          body_rays(normalized.target_skeleton, &normalized.avatar));
+  const LayeredOutfit result_outfit{
+      {input.garment, normalized.garment.faces}, face_layer, layer_count};
+  const LayerOrderMeasure on_result = measure_layer_order(
+      result_outfit, normalized.avatar, body_rays(normalized.target_skeleton, &normalized.avatar));
   report.result = order_report(on_result, order);
   const auto share = [](const LayerOrderReport& r) {
     return r.rays_meeting_layers > 0 ? static_cast<double>(r.out_of_order) / r.rays_meeting_layers
                                      : 0.0;
   };
-  report.order_kept = report.result.out_of_order == 0 ||
-                      (report.source.out_of_order > 0 && share(report.result) <= share(report.source));
+  report.order_kept =
+      report.result.out_of_order == 0 ||
+      (report.source.out_of_order > 0 && share(report.result) <= share(report.source));
   progress.log("layers",
                "inside to outside ({}): {}; on the source {} of {} rays meeting two layers out of "
                "order, on the result {} of {}",
@@ -131,9 +130,10 @@ OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options,
                report.source.rays_meeting_layers, report.result.out_of_order,
                report.result.rays_meeting_layers);
   if (!report.order_kept)
-    progress.warn(fmt::format("the layer order is not kept: {} of {} rays from the body meet an "
-                              "outer garment first (report.json outfit)",
-                              report.result.out_of_order, report.result.rays_meeting_layers));
+    progress.warn(
+        fmt::format("the layer order is not kept: {} of {} rays from the body meet an "
+                    "outer garment first (report.json outfit)",
+                    report.result.out_of_order, report.result.rays_meeting_layers));
 
   const ValidationResult& checked = input.certificate.validation.result;
   for (const GarmentPairFindings& pair : checked.garment_pairs) {
@@ -158,13 +158,13 @@ OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options,
                      out.hidden_document_faces, scene.avatar_document.source_path);
   report.hidden_faces_path = (fs::path(input.final_dir) / "hidden-avatar-faces.txt").string();
   if (options.write_avatar)
-    report.avatar_path =
-        (fs::path(input.final_dir) /
-         write_avatar_without(input.out_dir, scene, out.hidden_document_faces))
-            .string();
-  progress.log("hidden", "{} of {} avatar faces are under every garment{}", report.hidden_faces,
-               report.avatar_faces,
-               report.avatar_path.empty() ? "" : "; the avatar without them: " + report.avatar_path);
+    report.avatar_path = (fs::path(input.final_dir) /
+                          write_avatar_without(input.out_dir, scene, out.hidden_document_faces))
+                             .string();
+  progress.log(
+      "hidden", "{} of {} avatar faces are under every garment{}", report.hidden_faces,
+      report.avatar_faces,
+      report.avatar_path.empty() ? "" : "; the avatar without them: " + report.avatar_path);
   report.seconds = timer.seconds();
   return out;
 }

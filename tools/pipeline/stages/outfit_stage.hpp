@@ -34,7 +34,7 @@ struct OutfitOptions {
 };
 
 struct OutfitOutput {
-  OutfitReport report;  ///< every part but the layers' own (the caller's)
+  OutfitReport report;                     ///< every part but the layers' own (the caller's)
   std::vector<int> hidden_document_faces;  ///< avatar document faces, sorted
 };
 
@@ -45,7 +45,6 @@ struct OutfitOutput {
 /// write_avatar the avatar without them (avatar.glb for a glTF avatar, skinned as it was,
 /// else avatar.obj).
 /// @throw OutputError when a file cannot be written.
-OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options,
-                        Progress& progress);
+OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options, Progress& progress);
 
 }  // namespace gr
