@@ -5,8 +5,6 @@
 // Markdown table on stdout and results.csv in --out (tools/bench/plot_dense.py plots it).
 // Each run's peak resident memory is its own: the process's high-water mark (VmHWM) is
 // reset before it (/proc/self/clear_refs).
-#include <sys/resource.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +21,7 @@
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 #include "core/mesh/subdivision.hpp"
+#include "tools/bench/run_measures.hpp"
 #include "tools/pipeline/retarget.hpp"
 
 namespace fs = std::filesystem;
@@ -60,24 +59,6 @@ gr::TriangleMesh read_garment(const std::string& path) {
     for (int c = 0; c < 3; ++c)
       mesh.faces(static_cast<Eigen::Index>(f), c) = document.faces[f][c].position;
   return mesh;
-}
-
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-/// Resets the process's resident high-water mark, so that the next peak is the next run's.
-void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
-
-/// The process's resident high-water mark since the last reset, MiB (VmHWM).
-double peak_memory_since_reset_mb() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return 0.0;
 }
 
 std::vector<int> parse_levels(const std::string& text) {
@@ -149,13 +130,13 @@ int main(int argc, char** argv) {
       options.threads = threads;
       options.quiet = true;
       options.out_dir = (dir / "run").string();
-      reset_peak_memory();
-      const double cpu_before = cpu_seconds();
+      gr::bench::reset_peak_memory();
+      const double cpu_before = gr::bench::cpu_seconds();
       const gr::Stopwatch clock;
       const gr::RetargetResult result = gr::run_retarget(options);
       const double wall = clock.seconds();
-      const double cpu = cpu_seconds() - cpu_before;
-      const double peak_mb = peak_memory_since_reset_mb();
+      const double cpu = gr::bench::cpu_seconds() - cpu_before;
+      const double peak_mb = gr::bench::peak_memory_since_reset_mb();
       if (base_wall == 0.0) {
         base_wall = wall;
         base_cpu = cpu;
