@@ -149,9 +149,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   const gr::Quality quality = gr::parse_quality(quality_name);
 
-  std::printf("| scene | run | faces | result | wall s | CPU s | Newton (inflate/fit) | peak MB | "
-              "mean edge change | layer order (out of order: source / result) | hidden avatar "
-              "faces |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| scene | run | faces | result | wall s | CPU s | Newton (inflate/fit) | peak MB | "
+      "mean edge change | layer order (out of order: source / result) | hidden avatar "
+      "faces |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> ratios;
   for (const OutfitScene& scene : scenes()) {
     if (!only.empty() && std::find(only.begin(), only.end(), scene.name) == only.end()) continue;
@@ -185,11 +186,12 @@ int main(int argc, char** argv) {
     const Measured outfit = measure(options_for(scene, scene.garments, quality, threads,
                                                 fs::path(out_dir) / scene.name / "outfit"));
     row("outfit", outfit);
-    ratios.push_back(fmt::format("| {} | {:.2f} | {:.2f} |", scene.name,
-                                 outfit.cpu / singles_cpu, outfit.cpu / largest_cpu));
+    ratios.push_back(fmt::format("| {} | {:.2f} | {:.2f} |", scene.name, outfit.cpu / singles_cpu,
+                                 outfit.cpu / largest_cpu));
   }
-  std::printf("\n| scene | outfit CPU / garments one by one | outfit CPU / its costliest garment "
-              "alone |\n|---|---|---|\n");
+  std::printf(
+      "\n| scene | outfit CPU / garments one by one | outfit CPU / its costliest garment "
+      "alone |\n|---|---|---|\n");
   for (const std::string& line : ratios) std::printf("%s\n", line.c_str());
   return 0;
 }

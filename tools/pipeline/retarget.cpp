@@ -35,6 +35,9 @@ namespace {
 /// When the inflation fails from a skeleton-shrunk avatar, it runs again from one shrunk
 /// with this fraction of its pullback.
 constexpr double kStalledPullbackFactor = 0.2;
+/// When the inflation stalls from every shrink, it runs once more with a barrier this many
+/// times wider.
+constexpr double kStalledBarrierFactor = 2.0;
 
 void write_report(const std::string& path, const RetargetReport& report) {
   const nlohmann::json json = to_json(report);
@@ -180,6 +183,19 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
       return solved;
     }
     record_shrink(report, shrink, in.inferred);
+    solver_scene();
+    inflation = inflate();
+  }
+  if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure) {
+    // Layers and pieces pressed together by the growing avatar (a trouser cuff inside a
+    // shoe) can jam in a barrier thinner than their gap to each other: a wider one keeps
+    // them apart earlier, so that they move together.
+    double& dhat = report.parameters.solver.dhat;
+    progress.warn(
+        fmt::format("the inflation stalled with dhat {:.3g}: inflating again with "
+                    "a barrier twice as wide (--dhat {:.3g})",
+                    dhat, kStalledBarrierFactor * dhat));
+    dhat *= kStalledBarrierFactor;
     solver_scene();
     inflation = inflate();
   }
