@@ -129,3 +129,65 @@ def test_ctrl_c_stops_a_running_call_and_raises_keyboard_interrupt(scene, tmp_pa
     assert not (tmp_path / "stopped").exists()
     # Python's own handler is back: the next Ctrl-C raises in Python as usual.
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def _open_cylinder(radius, z0, z1, rings=12, segments=32):
+    """A tube about the z axis, faces outward (core/mesh/primitives.cpp's open_cylinder)."""
+    angle = 2 * np.pi * np.arange(segments) / segments
+    z = np.linspace(z0, z1, rings)
+    V = np.array([[radius * np.cos(a), radius * np.sin(a), h] for h in z for a in angle])
+    F = []
+    for i in range(rings - 1):
+        for j in range(segments):
+            a, b = i * segments + j, i * segments + (j + 1) % segments
+            F += [[a, b, b + segments], [a, b + segments, a + segments]]
+    return V, np.array(F)
+
+
+def _capsule(radius, half_length, rings=24, segments=32):
+    """A closed sphere stretched to `half_length` along z, faces outward."""
+    V = [[0.0, 0.0, -half_length]]
+    for i in range(1, rings):
+        polar = np.pi * i / rings
+        for j in range(segments):
+            a = 2 * np.pi * j / segments
+            V.append([radius * np.sin(polar) * np.cos(a), radius * np.sin(polar) * np.sin(a),
+                      -half_length * np.cos(polar)])
+    V.append([0.0, 0.0, half_length])
+    top = len(V) - 1
+    ring = lambda i, j: 1 + (i - 1) * segments + j % segments  # noqa: E731
+    F = [[0, ring(1, j + 1), ring(1, j)] for j in range(segments)]
+    for i in range(1, rings - 1):
+        for j in range(segments):
+            F += [[ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)], [ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)]]
+    F += [[top, ring(rings - 1, j), ring(rings - 1, j + 1)] for j in range(segments)]
+    return np.array(V), np.array(F)
+
+
+def test_retarget_takes_a_list_of_garments_as_an_outfit(tmp_path):
+    # Two sleeves nested on a capsule, refitted onto a fatter one (as test_outfit_retarget.cpp).
+    gr.write_mesh(tmp_path / "inner.obj", *_open_cylinder(0.32, -0.5, 0.5))
+    gr.write_mesh(tmp_path / "outer.obj", *_open_cylinder(0.35, -0.5, 0.5))
+    gr.write_mesh(tmp_path / "source_body.obj", *_capsule(0.3, 1.2))
+    avatar = _capsule(0.31, 1.2)
+    result = gr.retarget([tmp_path / "outer.obj", tmp_path / "inner.obj"], avatar, out=tmp_path / "run",
+                         source_body=tmp_path / "source_body.obj", quality="fast", threads=1,
+                         voxel_size=0.05, max_newton_iterations=300)
+    assert result["exit_code"] == 0, result["message"]
+    assert result["status"] == "certified"
+    assert result["certificate"]["certified"] is True
+    outfit = result["report"]["outfit"]
+    assert [layer["name"] for layer in outfit["layers"]] == ["outer", "inner"]
+    assert outfit["order"] == ["inner", "outer"] and outfit["order_from"] == "measured"
+    assert outfit["order_kept"] is True and outfit["layer_intersections"] == 0
+    assert "garment" not in result
+    assert len(result["garments"]) == 2
+    for (V, F), name in zip(result["garments"], ["outer", "inner"]):
+        V_in, F_in = gr.read_mesh(tmp_path / f"{name}.obj")
+        assert V.shape == V_in.shape
+        np.testing.assert_array_equal(F, F_in)
+        assert not np.array_equal(V, V_in)
+    # In the order given: the outer sleeve is still outside the inner one.
+    radius = [np.median(np.hypot(V[:, 0], V[:, 1])) for V, _ in result["garments"]]
+    assert radius[0] > radius[1] > 0.31
+    assert (tmp_path / "run" / "outer.obj").exists() and (tmp_path / "run" / "inner.obj").exists()

@@ -1,6 +1,7 @@
 // One browser check of a report page, in Debian's headless Chromium driven by playwright-core.
 //
-//   node check_report_page.mjs --page FILE --check console|network|canvas|garment-pixels|ease-pixels
+//   node check_report_page.mjs --page FILE
+//        --check console|network|canvas|garment-pixels|ease-pixels|garment-toggle
 //                              [--screenshot OUT.png]
 //
 // Exits 0 when the check passes, 1 with the reason when it fails. The page is opened from
@@ -209,6 +210,47 @@ const checks = {
   // In a screenshot, garment vertices seen from the camera show the colour they were given.
   async 'garment-pixels'(browser, url, options) {
     return garmentPixels(browser, url, options, async () => {});
+  },
+
+  // An outfit page: each garment's box hides that garment alone and shows it again.
+  async 'garment-toggle'(browser, url) {
+    const { page, errors } = await openReport(browser, url);
+    const background = await page.evaluate(
+      () => JSON.parse(document.getElementById('gr-scene').textContent).colours.background);
+    const count = await page.locator('.garment-toggle').count();
+    const garments = await page.evaluate(
+      () => JSON.parse(document.getElementById('gr-scene').textContent).garments.length);
+    expect(count === garments && count >= 2, `${count} garment boxes for ${garments} garments`);
+    const inSight = (g) => page.evaluate((garment) => {
+      const n = window.grView.vertexCount(garment);
+      const stride = Math.max(1, Math.floor(n / 600));
+      let seen = 0;
+      for (let v = 0; v < n; v += stride) if (window.grView.probe(garment, v).visible) ++seen;
+      return seen;
+    }, g);
+    const canvas = page.locator('#gr-view canvas');
+    const summary = [];
+    for (let g = 0; g < count; ++g) {
+      // This garment alone, so that no other one covers it.
+      for (let other = 0; other < count; ++other)
+        await page.locator(`#gr-garment-${other}`).setChecked(other === g);
+      const alone = await inSight(g);
+      expect(alone >= 10, `garment ${g}: only ${alone} vertices in sight with its box ticked`);
+      const shown = await canvas.screenshot();
+      await page.locator(`#gr-garment-${g}`).uncheck();
+      const hidden = await inSight(g);
+      expect(hidden === 0, `garment ${g}: ${hidden} vertices still in sight with its box unticked`);
+      const gone = await canvas.screenshot();
+      const { drawn } = await analysePngs(browser, [gone], countDrawn, { background, tolerance: DRAWN });
+      expect(drawn > 0, 'the avatar is not drawn once the garments are hidden');
+      const different = await analysePngs(browser, [shown, gone], countDifferent, { tolerance: DRAWN });
+      expect(different > 1000, `garment ${g}: unticking its box changed only ${different} pixels`);
+      await page.locator(`#gr-garment-${g}`).check();
+      expect(await inSight(g) === alone, `garment ${g}: not shown again when its box is ticked`);
+      summary.push(`garment ${g}: ${alone} vertices in sight, none unticked, ${different} pixels hidden`);
+    }
+    expect(errors.length === 0, `console errors: ${errors.join(' | ')}`);
+    return summary.join('; ');
   },
 
   // The ease colour mode: the box switches the garment to the ease map and its legend.

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fixture of the browser tests: the bundled scene's report page, made as
-# `tools/quickstart.sh run` makes it, the same with its source body (an ease fit), and a
+# `tools/quickstart.sh run` makes it, the same with its source body (an ease fit), a
 # `validate --html` page of its input garment
-# (which crosses the dress form, so that page has marked faces to show).
+# (which crosses the dress form, so that page has marked faces to show), and one of two
+# layers, the input skirt and the retargeted one (a page with a box per garment).
 #   make_pages.sh GARMENT_RETARGET SCENE_DIR OUT_DIR
 set -euo pipefail
 cli="$1" scene="$2" out="$3"
@@ -19,6 +20,11 @@ status=0
   --html "$out/validate.html" || status=$?
 # Exit 1 is validate's verdict "intersections found", expected here.
 [ "$status" -eq 1 ]
+status=0
+"$cli" validate --garment "$scene/garment.obj" --garment "$out/dress_form/garment.obj" \
+  --avatar "$scene/avatar.obj" --html "$out/layers.html" || status=$?
+[ "$status" -eq 1 ]
 test -s "$out/dress_form/report.html"
 test -s "$out/dress_form_ease/report.html"
 test -s "$out/validate.html"
+test -s "$out/layers.html"

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "tools/pipeline/outfit_meshes.hpp"
 
 namespace fs = std::filesystem;
 using gr::test::lines_of;
@@ -185,4 +186,57 @@ TEST_CASE("batch passes each job's limits to it", "[batch][cli][limits]") {
   // The stopped job left its log and record, and no result of its own.
   CHECK(fs::is_regular_file(out / "late" / "job.json"));
   CHECK_FALSE(fs::exists(out / "late" / "garment.obj"));
+}
+
+TEST_CASE("batch runs an outfit job: one certified run over every garment",
+          "[batch][cli][outfit]") {
+  const fs::path dir = gr::test::fresh_temp_dir("batch_outfit");
+  gr::test::write_nested_sleeves(dir);
+  // Relative to the manifest, given out of order, each made on the same source body.
+  std::ofstream(dir / "manifest.jsonl")
+      << "{\"id\": \"sleeves\", \"avatar\": \"avatar.obj\", \"garments\": ["
+         "{\"garment\": \"middle.obj\", \"source_body\": \"source_body.obj\"}, "
+         "{\"garment\": \"outer.obj\", \"source_body\": \"source_body.obj\"}, "
+         "{\"garment\": \"inner.obj\", \"source_body\": \"source_body.obj\"}], "
+         "\"quality\": \"fast\", \"voxel_size\": 0.05, \"max_newton_iterations\": 300}\n";
+  const fs::path out = dir / "out";
+  const gr::test::CliRun run = run_cli({"batch", (dir / "manifest.jsonl").string(), "--out",
+                                        out.string(), "--threads-per-job", "2", "--quiet"},
+                                       "batch_outfit");
+  INFO(run.out << run.err << read_text(out / "sleeves" / "log.txt"));
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.out, Catch::Contains("1 jobs: 1 computed, 0 reused, 0 failed"));
+  const std::vector<std::string> row = summary_row(out, "sleeves");
+  REQUIRE(row.size() == 13);
+  CHECK(row[1] == "certified");
+  CHECK(row[11] == "certified");
+
+  const fs::path job = out / "sleeves";
+  const nlohmann::json report = nlohmann::json::parse(read_text(job / "report.json"));
+  REQUIRE(report.contains("outfit"));
+  const nlohmann::json& outfit = report["outfit"];
+  REQUIRE(outfit["layers"].size() == 3);
+  const std::vector<std::string> given = {"middle", "outer", "inner"};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const nlohmann::json& layer = outfit["layers"][k];
+    CAPTURE(k, layer.dump());
+    CHECK(layer["name"] == given[k]);
+    CHECK(layer["faces"] == 2 * 11 * 32);
+    CHECK(layer["written"] == "./" + given[k] + ".obj");
+    CHECK(fs::is_regular_file(job / (given[k] + ".obj")));
+  }
+  CHECK(outfit["order"] == nlohmann::json{"inner", "middle", "outer"});
+  CHECK(outfit["order_from"] == "measured");
+  CHECK(outfit["order_kept"] == true);
+  CHECK(outfit["layer_intersections"] == 0);
+  CHECK(outfit["hidden_avatar_faces"]["hidden"].get<int>() > 0);
+  CHECK(fs::is_regular_file(job / "hidden-avatar-faces.txt"));
+  CHECK_FALSE(fs::exists(job / "garment.obj"));
+  const nlohmann::json certificate = nlohmann::json::parse(read_text(job / "certificate.json"));
+  CHECK(certificate["certified"] == true);
+  CHECK(certificate["garments"].size() == 3);
+  CHECK(certificate["garment_pairs"].size() == 3);
+  const nlohmann::json record = nlohmann::json::parse(read_text(job / "job.json"));
+  CHECK(record["threads"] == 2);
+  CHECK(record["status"] == "certified");
 }

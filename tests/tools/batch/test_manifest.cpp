@@ -104,3 +104,101 @@ TEST_CASE("job_key follows the input bytes and the options, not the paths", "[ba
   std::ofstream(dir / "g.obj") << "v 0 0 1\n";
   CHECK(gr::job_key(jobs[0]) != key);
 }
+
+TEST_CASE("read_manifest keeps an outfit's garments in order, given as paths",
+          "[batch][manifest][outfit]") {
+  const fs::path manifest = write_manifest(
+      "outfit_paths",
+      "{\"id\": \"sleeves\", \"garments\": [\"outer.obj\", \"inner.obj\", \"/abs/middle.obj\"], "
+      "\"avatar\": \"a.obj\", \"quality\": \"fast\"}\n");
+  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest.string());
+  REQUIRE(jobs.size() == 1);
+  const fs::path folder = manifest.parent_path();
+  using Inputs = std::vector<std::pair<std::string, std::string>>;
+  CHECK(jobs[0].inputs == Inputs{{"avatar", (folder / "a.obj").string()},
+                                 {"garment", (folder / "outer.obj").string()},
+                                 {"garment", (folder / "inner.obj").string()},
+                                 {"garment", "/abs/middle.obj"}});
+  const nlohmann::json expected = {
+      {"avatar", (folder / "a.obj").string()},
+      {"garment",
+       {(folder / "outer.obj").string(), (folder / "inner.obj").string(), "/abs/middle.obj"}},
+      {"quality", "fast"},
+      {"out", "."},
+      {"write-in-place", true},
+      {"threads", 1}};
+  CHECK(gr::job_options(jobs[0], 1) == expected);
+}
+
+TEST_CASE("read_manifest gives each garment object's own files as arrays in the garments' order",
+          "[batch][manifest][outfit]") {
+  const fs::path manifest = write_manifest(
+      "outfit_objects",
+      "{\"id\": \"a\", \"avatar\": \"a.glb\", \"target_skeleton\": \"t.obj\", \"garments\": ["
+      "{\"garment\": \"outfit.glb\", \"garment_mesh\": \"Shirt\", \"no_fit\": \"shirt.txt\", "
+      "\"source_skeleton\": \"s1.obj\", \"source_body\": \"b1.obj\"}, "
+      "{\"source_body\": \"b2.obj\", \"garment\": \"outfit.glb\", \"garment_mesh\": "
+      "\"Trousers\", \"no_fit\": \"trousers.txt\", \"source_skeleton\": \"s2.obj\"}]}\n");
+  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest.string());
+  REQUIRE(jobs.size() == 1);
+  const auto in = [&](const char* name) { return (manifest.parent_path() / name).string(); };
+  const nlohmann::json options = gr::job_options(jobs[0], 2);
+  CHECK(options["garment"] == nlohmann::json{in("outfit.glb"), in("outfit.glb")});
+  CHECK(options["garment-mesh"] == nlohmann::json{"Shirt", "Trousers"});
+  CHECK(options["no_fit"] == nlohmann::json{in("shirt.txt"), in("trousers.txt")});
+  CHECK(options["source_skeleton"] == nlohmann::json{in("s1.obj"), in("s2.obj")});
+  CHECK(options["source_body"] == nlohmann::json{in("b1.obj"), in("b2.obj")});
+  CHECK(options["target_skeleton"] == in("t.obj"));  // given once: a text, not an array
+  CHECK(options["avatar"] == in("a.glb"));
+  // The mesh names are options; the files are inputs, keyed by their bytes.
+  CHECK(jobs[0].options == nlohmann::json{{"garment-mesh", {"Shirt", "Trousers"}}});
+  CHECK(jobs[0].inputs.size() == 10);
+}
+
+TEST_CASE("read_manifest refuses malformed garments with the manifest line",
+          "[batch][manifest][outfit]") {
+  const std::string good = "{\"id\": \"ok\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\"}\n";
+  const auto error = [&](const std::string& name, const std::string& garments) {
+    const std::string message = error_of(
+        name, good + "{\"id\": \"b\", \"avatar\": \"a.obj\", \"garments\": " + garments + "}\n");
+    CAPTURE(garments, message);
+    CHECK_THAT(message, Catch::Contains("manifest.jsonl:2:"));
+    return message;
+  };
+  CHECK_THAT(error("garments_text", "\"x.obj\""),
+             Catch::Contains("\"garments\" must be a non-empty array"));
+  CHECK_THAT(error("garments_empty", "[]"),
+             Catch::Contains("\"garments\" must be a non-empty array"));
+  CHECK_THAT(error("garments_no_garment", "[\"g.obj\", {\"no_fit\": \"n.txt\"}]"),
+             Catch::Contains("each of \"garments\" needs its \"garment\""));
+  CHECK_THAT(error("garments_unknown_key", "[{\"garment\": \"g.obj\", \"colour\": \"red\"}]"),
+             Catch::Contains("\"garments.colour\" is not a garment's own"));
+  CHECK_THAT(error("garments_number", "[\"g.obj\", 3]"),
+             Catch::Contains("\"garments\" must be a file path"));
+  CHECK_THAT(error("garments_empty_path", "[{\"garment\": \"\"}]"),
+             Catch::Contains("\"garments.garment\" must be a file path"));
+  CHECK_THAT(error("garments_mesh_twice",
+                   "[{\"garment\": \"o.glb\", \"garment_mesh\": \"A\"}], \"garment_mesh\": \"B\""),
+             Catch::Contains("\"garment_mesh\" given twice"));
+}
+
+TEST_CASE("job_key follows the bytes and the order of every garment of an outfit",
+          "[batch][manifest][outfit]") {
+  const fs::path dir = gr::test::fresh_temp_dir("manifest_outfit_key");
+  for (const char* name : {"inner.obj", "outer.obj", "a.obj"})
+    std::ofstream(dir / name) << "v 0 0 0\n# " << name << "\n";
+  std::ofstream(dir / "manifest.jsonl")
+      << "{\"id\": \"a\", \"garments\": [\"inner.obj\", \"outer.obj\"], \"avatar\": \"a.obj\"}\n"
+         "{\"id\": \"b\", \"garments\": [\"outer.obj\", \"inner.obj\"], \"avatar\": \"a.obj\"}\n"
+         "{\"id\": \"c\", \"garments\": [{\"garment\": \"inner.obj\"}, "
+         "{\"garment\": \"outer.obj\"}], \"avatar\": \"a.obj\"}\n"
+         "{\"id\": \"d\", \"garment\": \"inner.obj\", \"avatar\": \"a.obj\"}\n";
+  const std::vector<gr::BatchJob> jobs = gr::read_manifest((dir / "manifest.jsonl").string());
+  REQUIRE(jobs.size() == 4);
+  const std::string key = gr::job_key(jobs[0]);
+  CHECK(gr::job_key(jobs[1]) != key);  // the first garment's frame is the outfit's
+  CHECK(gr::job_key(jobs[2]) == key);  // paths or objects: the same job
+  CHECK(gr::job_key(jobs[3]) != key);  // without its second garment
+  std::ofstream(dir / "outer.obj", std::ios::app) << "# edited\n";
+  CHECK(gr::job_key(jobs[0]) != key);
+}

@@ -7,47 +7,13 @@
 #include <catch2/catch.hpp>
 
 #include "core/common/errors.hpp"
-#include "core/io/mesh_file.hpp"
-#include "core/mesh/primitives.hpp"
 #include "extremes_support.hpp"
+#include "outfit_meshes.hpp"
 
 namespace gr {
 namespace {
 
-/// A capsule-like body along z: a sphere stretched to `half_length`, of `radius` around.
-TriangleMesh capsule_body(double radius, double half_length) {
-  TriangleMesh body = icosphere(3, 1.0);
-  body.vertices.col(0) *= radius;
-  body.vertices.col(1) *= radius;
-  body.vertices.col(2) *= half_length;
-  return body;
-}
-
-/// Three sleeves nested around a capsule of radius 0.3, written beside it, and a fatter
-/// target capsule: the sleeves (radii 0.32, 0.34, 0.36) must grow around it in their order.
-struct NestedSleeves {
-  std::filesystem::path dir;
-  std::vector<std::string> sleeves;  ///< inner, middle, outer
-  std::string source_body;
-  std::string avatar;
-};
-
-NestedSleeves nested_sleeves(const std::string& name) {
-  NestedSleeves scene;
-  scene.dir = test::fresh_temp_dir(name);
-  const char* names[] = {"inner", "middle", "outer"};
-  const double radii[] = {0.32, 0.34, 0.36};
-  for (int k = 0; k < 3; ++k) {
-    const std::string path = (scene.dir / (std::string(names[k]) + ".obj")).string();
-    write_obj(path, open_cylinder(radii[k], -0.5, 0.5, 12, 32));
-    scene.sleeves.push_back(path);
-  }
-  scene.source_body = (scene.dir / "source_body.obj").string();
-  write_obj(scene.source_body, capsule_body(0.3, 1.2));
-  scene.avatar = (scene.dir / "avatar.obj").string();
-  write_obj(scene.avatar, capsule_body(0.31, 1.2));
-  return scene;
-}
+using test::NestedSleeves;
 
 /// Options for the sleeves given in `order` (indices into NestedSleeves::sleeves).
 RetargetOptions outfit_options(const NestedSleeves& scene, const std::vector<int>& order) {
@@ -65,7 +31,7 @@ RetargetOptions outfit_options(const NestedSleeves& scene, const std::vector<int
 
 TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order",
           "[pipeline][outfit]") {
-  const NestedSleeves scene = nested_sleeves("outfit_sleeves");
+  const NestedSleeves scene = test::write_nested_sleeves(test::fresh_temp_dir("outfit_sleeves"));
   // Given out of order: the run measures inside to outside on the source.
   const RetargetResult result = test::run_and_check(outfit_options(scene, {1, 2, 0}));
   INFO(result.message);
@@ -100,7 +66,8 @@ TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order
 
 TEST_CASE("outfit: a given layer order is used, and one the result contradicts is reported",
           "[pipeline][outfit]") {
-  const NestedSleeves scene = nested_sleeves("outfit_given_order");
+  const NestedSleeves scene =
+      test::write_nested_sleeves(test::fresh_temp_dir("outfit_given_order"));
   RetargetOptions options = outfit_options(scene, {0, 1, 2});
   options.layer_order = {"outer", "middle", "inner"};
   const RetargetResult result = test::run_and_check(options);

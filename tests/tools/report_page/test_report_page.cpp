@@ -215,3 +215,27 @@ TEST_CASE("the benchmark page embeds its plot and escapes its table", "[report_p
   data.rows[1].pop_back();
   CHECK_THROWS_AS(gr::benchmark_page_html(data), std::invalid_argument);
 }
+
+TEST_CASE("an outfit page has a box per garment, a one-garment page none",
+          "[report_page][outfit]") {
+  gr::ReportPageData data = gr::test::small_page_scene();
+  data.report = sample_report();
+  const std::string single = gr::report_page_html(data);
+  CHECK(count_of(single, "class=\"garment-toggle\"") == 0);
+  CHECK(single.find("id=\"gr-garment-0\"") == std::string::npos);
+
+  gr::PageGarment coat = data.garments[0];
+  coat.name = "coat <wool>";
+  for (gr::GarmentShape& shape : coat.shapes) shape.vertices *= 1.2;
+  data.garments.push_back(coat);
+  const std::string outfit = gr::report_page_html(data);
+  CHECK(count_of(outfit, "class=\"garment-toggle\"") == 2);
+  CHECK(outfit.find("<label><input type=\"checkbox\" class=\"garment-toggle\" "
+                    "data-garment=\"0\" id=\"gr-garment-0\" checked> skirt</label>") !=
+        std::string::npos);
+  CHECK(outfit.find("<label><input type=\"checkbox\" class=\"garment-toggle\" "
+                    "data-garment=\"1\" id=\"gr-garment-1\" checked> coat &lt;wool&gt;</label>") !=
+        std::string::npos);
+  CHECK(outfit.find("id=\"gr-garment-2\"") == std::string::npos);
+  CHECK(gr::test::scene_of(outfit)["garments"].size() == 2);
+}
