@@ -104,8 +104,17 @@ bool certified_outputs(const fs::path& folder, const nlohmann::json& record,
   const std::optional<Outcome> outcome = outcome_for_exit_code(exit_code);
   if (!outcome || !certified(*outcome)) return false;
   const nlohmann::json certificate = read_json_or_null((folder / "certificate.json").string());
-  return certificate.is_object() && certificate.value("certified", false) &&
-         fs::is_regular_file(folder / "garment.obj");
+  if (!certificate.is_object() || !certificate.value("certified", false)) return false;
+  // The garments the run wrote: an outfit's layers, else garment.obj or garment.glb.
+  const nlohmann::json report = read_json_or_null((folder / "report.json").string());
+  if (report.is_object() && report.contains("outfit")) {
+    const nlohmann::json& layers = report["outfit"]["layers"];
+    return layers.is_array() && !layers.empty() &&
+           std::all_of(layers.begin(), layers.end(), [&](const nlohmann::json& layer) {
+             return fs::is_regular_file(folder / fs::path(layer.value("written", "")).filename());
+           });
+  }
+  return fs::is_regular_file(folder / "garment.obj") || fs::is_regular_file(folder / "garment.glb");
 }
 
 JobOutcome outcome_from_record(const std::string& id, const nlohmann::json& record) {
@@ -189,7 +198,7 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
     outcome.error = error_line(log_path);
 
   nlohmann::json inputs = nlohmann::json::object();
-  for (const auto& [name, path] : job.inputs) inputs[name] = path;
+  for (const auto& [name, path] : job.inputs) add_keyed(inputs, name, path);
   const nlohmann::json record = {{"id", job.id},
                                  {"key", key},
                                  {"status", outcome.status},

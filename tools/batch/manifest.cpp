@@ -54,6 +54,17 @@ void add_outfit(const nlohmann::json& garments, const AddInput& add_input, Batch
     }
     if (!item.contains("garment")) throw fail("each of \"garments\" needs its \"garment\"");
   }
+  // A garment's own file given for some garments only could not say whose it is.
+  for (const char* key : {"garment_mesh", "no_fit", "source_skeleton", "source_body"}) {
+    const auto given = std::count_if(garments.begin(), garments.end(), [&](const auto& item) {
+      return item.is_object() && item.contains(key);
+    });
+    if (given > 0 && given != static_cast<std::ptrdiff_t>(garments.size()))
+      throw fail(
+          fmt::format("\"garments\": \"{}\" is given for {} of the {} garments: give "
+                      "it for each, or once beside \"garments\" for all",
+                      key, given, garments.size()));
+  }
   if (!meshes.empty()) {
     if (job.options.contains("garment-mesh")) throw fail("\"garment_mesh\" given twice");
     job.options["garment-mesh"] = meshes;
@@ -124,9 +135,19 @@ BatchJob parse_job(const std::string& manifest, std::size_t line_number, const s
 
 }  // namespace
 
+void add_keyed(nlohmann::json& object, const std::string& key, const nlohmann::json& value) {
+  if (!object.contains(key))
+    object[key] = value;
+  else if (object[key].is_array())
+    object[key].push_back(value);
+  else
+    object[key] = nlohmann::json::array({object[key], value});
+}
+
 const std::vector<std::string>& batch_input_keys() {
   static const std::vector<std::string> keys = {
-      "garment", "avatar", "source_skeleton", "target_skeleton", "skin_weights", "no_fit"};
+      "garment",      "avatar", "source_skeleton", "target_skeleton",
+      "skin_weights", "no_fit", "source_body"};
   return keys;
 }
 
@@ -157,14 +178,7 @@ std::vector<BatchJob> read_manifest(const std::string& manifest_path) {
 nlohmann::json job_options(const BatchJob& job, int threads) {
   nlohmann::json options = job.options;
   // A key given for several garments of an outfit becomes an array, in their order.
-  for (const auto& [key, path] : job.inputs) {
-    if (!options.contains(key))
-      options[key] = path;
-    else if (options[key].is_array())
-      options[key].push_back(path);
-    else
-      options[key] = nlohmann::json::array({options[key], path});
-  }
+  for (const auto& [key, path] : job.inputs) add_keyed(options, key, path);
   options["out"] = ".";
   options["write-in-place"] = true;
   options["threads"] = threads;
@@ -173,15 +187,7 @@ nlohmann::json job_options(const BatchJob& job, int threads) {
 
 std::string job_key(const BatchJob& job) {
   nlohmann::json inputs = nlohmann::json::object();
-  for (const auto& [key, path] : job.inputs) {
-    const std::string digest = sha256_of_file(path);
-    if (!inputs.contains(key))
-      inputs[key] = digest;
-    else if (inputs[key].is_array())
-      inputs[key].push_back(digest);
-    else
-      inputs[key] = nlohmann::json::array({inputs[key], digest});
-  }
+  for (const auto& [key, path] : job.inputs) add_keyed(inputs, key, sha256_of_file(path));
   const nlohmann::json keyed = {
       {"version", GR_VERSION}, {"inputs", inputs}, {"options", job.options}};
   return sha256_of_text(keyed.dump());

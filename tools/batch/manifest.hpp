@@ -23,6 +23,10 @@ struct BatchJob {
 /// '-' for '_' (`no_fit` is `--no-fit`).
 const std::vector<std::string>& batch_input_keys();
 
+/// Sets `object[key]` to `value`, or, for a key set already (the garments of an outfit),
+/// appends it: an array in the order added.
+void add_keyed(nlohmann::json& object, const std::string& key, const nlohmann::json& value);
+
 /// Options the batch sets itself, refused in a manifest.
 const std::vector<std::string>& batch_reserved_options();
 

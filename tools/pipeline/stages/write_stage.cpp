@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -135,15 +137,32 @@ void write_outfit(const WriteInput& input, const WriteOptions& options, bool glb
   if (glb) skin = garment_skin(input, options, out, progress);
   std::vector<GlbMesh> meshes;
   std::vector<SkinBinding> skins(scene.layers.size());
+  std::set<std::string> stems;
+  std::map<std::string, std::string> library_from;  // material file -> the garment it came from
   for (std::size_t k = 0; k < scene.layers.size(); ++k) {
     const GarmentLayer& layer = scene.layers[k];
     const MatrixX3d own = positions.middleRows(layer.first_position, layer.position_count);
-    const std::string stem = layer_file_stem(layer.name);
+    // Names that differ only in the characters a file name leaves out still get a file each.
+    const std::string base = layer_file_stem(layer.name);
+    std::string stem = base;
+    for (int n = 2; !stems.insert(stem).second; ++n) stem = fmt::format("{}-{}", base, n);
     if (!glb) {
       out.garments.push_back({stem + ".obj", ""});
-      for (const auto& warning :
-           copy_material_files(layer.document, input.out_dir, options.allow_external_assets))
-        progress.warn(warning);
+      bool shared_library = false;
+      for (const std::string& library : layer.document.material_libraries) {
+        const auto [it, added] = library_from.emplace(library, layer.path);
+        if (!added && it->second != layer.path) {
+          shared_library = true;
+          progress.warn(
+              fmt::format("{} and {} both name the material file {}: the first one's "
+                          "is kept, and both garments use it",
+                          it->second, layer.path, library));
+        }
+      }
+      if (!shared_library)
+        for (const auto& warning :
+             copy_material_files(layer.document, input.out_dir, options.allow_external_assets))
+          progress.warn(warning);
       write_obj((fs::path(input.out_dir) / (stem + ".obj")).string(), layer.document, own);
       continue;
     }
