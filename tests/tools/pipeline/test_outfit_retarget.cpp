@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include "core/common/errors.hpp"
+#include "core/io/gltf_document.hpp"
+#include "core/io/obj_document.hpp"
 #include "extremes_support.hpp"
 #include "outfit_meshes.hpp"
 
@@ -81,6 +83,44 @@ TEST_CASE("outfit: a given layer order is used, and one the result contradicts i
 
   options.layer_order = {"outer", "nowhere", "inner"};
   CHECK_THROWS_AS(run_retarget(options), InputError);
+}
+
+}  // namespace gr
+
+namespace gr {
+
+TEST_CASE("outfit: written as one GLB with a mesh per garment, or a GLB each when split",
+          "[pipeline][outfit][gltf]") {
+  const NestedSleeves scene = test::write_nested_sleeves(test::fresh_temp_dir("outfit_glb"));
+  RetargetOptions options = outfit_options(scene, {0, 1, 2});
+  options.format = "glb";
+  SECTION("one file") {
+    const RetargetResult result = run_retarget(options);
+    INFO(result.message);
+    REQUIRE(result.status == Outcome::kCertified);
+    const std::filesystem::path written = scene.dir / "out" / "outfit.glb";
+    CHECK(result.garment_path == written.string());
+    CHECK(gltf_mesh_names(written.string()) ==
+          std::vector<std::string>{"inner", "middle", "outer"});
+    // Each mesh read back is its garment: as many triangles as the sleeve it came from.
+    for (const std::string& name : {"inner", "middle", "outer"})
+      CHECK(read_gltf(written.string(), name).document.faces.size() ==
+            read_obj((scene.dir / (name + ".obj")).string()).faces.size());
+    REQUIRE(result.report.outfit.has_value());
+    for (const OutfitLayerReport& layer : result.report.outfit->layers) {
+      CHECK(layer.written == written.string());
+      CHECK(layer.written_mesh == layer.name);
+    }
+  }
+  SECTION("split") {
+    options.split = true;
+    const RetargetResult result = run_retarget(options);
+    INFO(result.message);
+    REQUIRE(result.status == Outcome::kCertified);
+    CHECK_FALSE(std::filesystem::exists(scene.dir / "out" / "outfit.glb"));
+    for (const std::string& name : {"inner", "middle", "outer"})
+      CHECK(std::filesystem::is_regular_file(scene.dir / "out" / (name + ".glb")));
+  }
 }
 
 }  // namespace gr
