@@ -80,6 +80,7 @@ nlohmann::json to_json(const InferenceReport& r) {
     const NoFitOptions& o = r.no_fit_options;
     no_fit["method"] = r.no_fit.method;
     no_fit["path"] = r.no_fit_path;
+    if (!r.no_fit_layer_paths.empty()) no_fit["paths"] = r.no_fit_layer_paths;
     no_fit["vertices"] = r.no_fit.vertices.size();
     no_fit["vertices_by_rule"] = {{"source_body", r.no_fit.from_body},
                                   {"skirt_hips", r.no_fit.from_hips},
@@ -212,14 +213,26 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
 
   std::vector<char> listed(static_cast<std::size_t>(vertex_count), 0);
   for (int v : report.no_fit.vertices) listed[static_cast<std::size_t>(v)] = 1;
-  report.no_fit_path = out_dir + "/no-fit.txt";
-  write_file_atomically(report.no_fit_path, [&](std::ostream& out) {
-    // The comment keeps an empty list a list that --no-fit reads back.
-    out << "# no-fit list inferred by garment-retarget: 0-based garment vertex ids\n";
-    const auto& obj_to_sim = scene.garment.obj_to_sim;
-    for (std::size_t p = 0; p < obj_to_sim.size(); ++p)
-      if (obj_to_sim[p] >= 0 && listed[static_cast<std::size_t>(obj_to_sim[p])]) out << p << '\n';
-  });
+  const auto& obj_to_sim = scene.garment.obj_to_sim;
+  const auto write_list = [&](const std::string& path, int first, int count) {
+    write_file_atomically(path, [&](std::ostream& out) {
+      // The comment keeps an empty list a list that --no-fit reads back.
+      out << "# no-fit list inferred by garment-retarget: 0-based garment vertex ids\n";
+      for (int p = 0; p < count; ++p) {
+        const int s = obj_to_sim[static_cast<std::size_t>(first + p)];
+        if (s >= 0 && listed[static_cast<std::size_t>(s)]) out << p << '\n';
+      }
+    });
+  };
+  if (scene.layers.size() > 1) {
+    for (const GarmentLayer& layer : scene.layers) {
+      report.no_fit_layer_paths.push_back(out_dir + "/" + layer.file_stem + ".no-fit.txt");
+      write_list(report.no_fit_layer_paths.back(), layer.first_position, layer.position_count);
+    }
+  } else {
+    report.no_fit_path = out_dir + "/no-fit.txt";
+    write_list(report.no_fit_path, 0, static_cast<int>(obj_to_sim.size()));
+  }
   return report.no_fit.vertices;
 }
 

@@ -47,6 +47,9 @@ struct InferenceReport {
   NoFitOptions no_fit_options;
   int no_fit_faces = 0;  ///< garment faces left free by the list used
   std::string no_fit_path;
+  /// An outfit: the inferred list of each garment, its own vertex ids (`<stem>.no-fit.txt`,
+  /// passed back with --no-fit once per garment), in the layers' order; no_fit_path empty.
+  std::vector<std::string> no_fit_layer_paths;
 };
 
 nlohmann::json to_json(const InferenceReport& report);

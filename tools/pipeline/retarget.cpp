@@ -272,10 +272,15 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   scene.no_fit = inferred.no_fit;
   record_inputs(report, read, normalized_scene, inferred);
   if (report.inferred.no_fit_inferred) {
-    report.inferred.no_fit_path = folder.final_path("no-fit.txt");
+    std::vector<std::string>& per_layer = report.inferred.no_fit_layer_paths;
+    if (per_layer.empty()) report.inferred.no_fit_path = folder.final_path("no-fit.txt");
+    for (std::string& path : per_layer)
+      path = folder.final_path(fs::path(path).filename().string());
     progress.log("no-fit", "inferred ({}): {} vertices, {} faces free, written to {}",
                  report.inferred.no_fit.method, report.inferred.no_fit.vertices.size(),
-                 report.inferred.no_fit_faces, report.inferred.no_fit_path);
+                 report.inferred.no_fit_faces,
+                 per_layer.empty() ? report.inferred.no_fit_path
+                                   : fmt::format("{}", fmt::join(per_layer, ", ")));
   }
   // Skin weights bound to the target skeleton when none were given: the shrink's, and a
   // written GLB's skin.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -150,6 +151,21 @@ void move_layer(const Eigen::Matrix4d& to_first_frame, GarmentLayer& layer, Simu
         (to_first * Vector3d(sim.mesh.vertices.row(v).transpose())).transpose();
 }
 
+/// A layer's file stem (GarmentLayer::file_stem), unique among `taken`.
+std::string layer_file_stem(const std::string& name, std::set<std::string>& taken) {
+  std::string base;
+  for (const char c : name)
+    base += (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_' || c == '.')
+                ? c
+                : '_';
+  if (base.empty() || base.front() == '.') base = "garment" + base;
+  for (const char* own : {"avatar", "garment", "outfit", "report", "certificate", "no-fit"})
+    if (base == own) base += "-garment";
+  std::string stem = base;
+  for (int n = 2; !taken.insert(stem).second; ++n) stem = fmt::format("{}-{}", base, n);
+  return stem;
+}
+
 /// A layer's name from its mesh, else its file's stem, else (files of one stem, such as
 /// skirt/garment.obj and puffer/garment.obj) its folder's name; made unique among `taken`.
 std::string layer_name(const std::string& path, const std::string& mesh,
@@ -240,6 +256,7 @@ void skeletons_from_skins(const ScenePaths& paths, Scene& scene) {
 /// garment document and simulation mesh.
 void load_garments(const ScenePaths& paths, Scene& scene) {
   std::set<std::string> names;
+  std::set<std::string> file_stems;
   std::vector<std::string> stems{std::filesystem::path(paths.garment).stem().string()};
   for (const GarmentPaths& more : paths.more_garments)
     stems.push_back(std::filesystem::path(more.garment).stem().string());
@@ -263,6 +280,7 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
       if (!added) layer.gltf->model = it->second;
     }
     layer.name = layer_name(path, layer.mesh, stems, names);
+    layer.file_stem = layer_file_stem(layer.name, file_stems);
     if (k > 0) {
       std::optional<Eigen::Matrix4d> to_first_frame =
           body_frame_onto(more.source_body, paths.source_body, paths.source_body_meshes);

@@ -51,6 +51,9 @@ struct ScenePaths {
 /// merged garment document.
 struct GarmentLayer {
   std::string name;  ///< its glTF mesh's name, else its file's stem; unique in the scene
+  /// Its own written files' stem (`<stem>.obj`, `<stem>.no-fit.txt`): the name with only
+  /// letters, digits, '-', '_' and '.', unique, never one of the result folder's own names.
+  std::string file_stem;
   std::string path;
   std::string mesh;  ///< the glTF mesh read; empty for OBJ
   /// Its document, positions in the first garment's frame.

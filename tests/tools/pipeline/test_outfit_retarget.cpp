@@ -9,6 +9,7 @@
 #include "core/common/errors.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/io/obj_document.hpp"
+#include "core/io/rig_files.hpp"
 #include "extremes_support.hpp"
 #include "outfit_meshes.hpp"
 
@@ -64,6 +65,17 @@ TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order
   CHECK(outfit.hidden_faces > 0);
   CHECK(outfit.hidden_faces < outfit.avatar_faces / 2);
   CHECK(std::filesystem::exists(scene.dir / "out" / "hidden-avatar-faces.txt"));
+  // Inferred no-fit lists, one per garment in its own numbering, that --no-fit reads back.
+  CHECK(r.inferred.no_fit_inferred);
+  CHECK_FALSE(std::filesystem::exists(scene.dir / "out" / "no-fit.txt"));
+  REQUIRE(r.inferred.no_fit_layer_paths.size() == 3);
+  for (const std::string& name : {"middle", "outer", "inner"}) {
+    const std::filesystem::path list = scene.dir / "out" / (name + ".no-fit.txt");
+    REQUIRE(std::filesystem::exists(list));
+    const std::size_t rows =
+        static_cast<std::size_t>(read_obj((scene.dir / (name + ".obj")).string()).positions.rows());
+    CHECK_NOTHROW(read_vertex_list(list.string(), static_cast<int>(rows)));
+  }
 }
 
 TEST_CASE("outfit: a given layer order is used, and one the result contradicts is reported",

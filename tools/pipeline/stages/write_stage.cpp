@@ -113,20 +113,6 @@ void write_garment_glb(const WriteInput& input, const WriteOptions& options, Wri
   write_glb(path, scene.garment_document, source, positions, skin ? &*skin : nullptr);
 }
 
-/// A layer's file stem: its name with only letters, digits, '-', '_' and '.', never one of
-/// the result folder's own names.
-std::string layer_file_stem(const std::string& name) {
-  std::string stem;
-  for (const char c : name)
-    stem += (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_' || c == '.')
-                ? c
-                : '_';
-  if (stem.empty() || stem.front() == '.') stem = "garment" + stem;
-  for (const char* taken : {"avatar", "garment", "outfit", "report", "certificate", "no-fit"})
-    if (stem == taken) stem += "-garment";
-  return stem;
-}
-
 /// Writes each layer of an outfit: one GLB with a mesh each (or, split, a GLB each), or an
 /// OBJ each.
 void write_outfit(const WriteInput& input, const WriteOptions& options, bool glb, WriteOutput& out,
@@ -137,15 +123,11 @@ void write_outfit(const WriteInput& input, const WriteOptions& options, bool glb
   if (glb) skin = garment_skin(input, options, out, progress);
   std::vector<GlbMesh> meshes;
   std::vector<SkinBinding> skins(scene.layers.size());
-  std::set<std::string> stems;
   std::map<std::string, std::string> library_from;  // material file -> the garment it came from
   for (std::size_t k = 0; k < scene.layers.size(); ++k) {
     const GarmentLayer& layer = scene.layers[k];
     const MatrixX3d own = positions.middleRows(layer.first_position, layer.position_count);
-    // Names that differ only in the characters a file name leaves out still get a file each.
-    const std::string base = layer_file_stem(layer.name);
-    std::string stem = base;
-    for (int n = 2; !stems.insert(stem).second; ++n) stem = fmt::format("{}-{}", base, n);
+    const std::string& stem = layer.file_stem;
     if (!glb) {
       out.garments.push_back({stem + ".obj", ""});
       bool shared_library = false;
