@@ -177,27 +177,21 @@ def retarget(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **
                                  **options)
         result = run_retarget(typed)
         report = _read_json(os.path.join(folder, "report.json"))
-        if outfit:
-            layers = ((report or {}).get("outfit") or {}).get("layers", [])
-            return {
-                "exit_code": result.exit_code,
-                "status": result.status_name,
-                "message": result.message,
-                "report": report,
-                "certificate": _read_json(os.path.join(folder, "certificate.json")),
-                "garments": [_read_mesh_if_present(layer["written"]) if layer["written"].endswith(".obj")
-                             else None for layer in layers],
-                "out": None if out is None else folder,
-            }
-        return {
+        found = {
             "exit_code": result.exit_code,
             "status": result.status_name,
             "message": result.message,
             "report": report,
             "certificate": _read_json(os.path.join(folder, "certificate.json")),
-            "garment": _read_mesh_if_present(os.path.join(folder, "garment.obj")),
             "out": None if out is None else folder,
         }
+        if outfit:
+            layers = ((report or {}).get("outfit") or {}).get("layers", [])
+            found["garments"] = [_read_mesh_if_present(layer["written"]) if layer["written"].endswith(".obj")
+                                 else None for layer in layers]
+        else:
+            found["garment"] = _read_mesh_if_present(os.path.join(folder, "garment.obj"))
+        return found
 
 
 def validate(garments: Any, avatar: Any, sources: Iterable[Any] | None = None, **options: Any) -> dict:

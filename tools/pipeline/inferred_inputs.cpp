@@ -127,14 +127,14 @@ SimulationMesh read_one_source_body(const std::string& path,
   if (is_gltf_path(path)) {
     std::vector<std::string> meshes = named_meshes;
     std::error_code error;
-    bool from_garment_file = false;
+    std::vector<std::string> garment_meshes;  // of the garments read from this file
     for (const GarmentLayer& layer : scene.layers)
-      from_garment_file |= layer.gltf && std::filesystem::equivalent(path, layer.path, error);
-    if (meshes.empty() && from_garment_file) {
+      if (layer.gltf && std::filesystem::equivalent(path, layer.path, error))
+        garment_meshes.push_back(layer.mesh);
+    if (meshes.empty() && !garment_meshes.empty()) {
       meshes = gltf_skin_mesh_names(path);
-      for (const GarmentLayer& layer : scene.layers)
-        if (layer.gltf && std::filesystem::equivalent(path, layer.path, error))
-          meshes.erase(std::remove(meshes.begin(), meshes.end(), layer.mesh), meshes.end());
+      for (const std::string& garment : garment_meshes)
+        meshes.erase(std::remove(meshes.begin(), meshes.end(), garment), meshes.end());
       if (meshes.empty())
         throw InputError(path, 0, "has no mesh but the garments to be the source body");
     }

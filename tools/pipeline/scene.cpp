@@ -114,17 +114,13 @@ Eigen::Matrix4d frame_onto(const Skeleton& own, const Skeleton& first, const std
   return Eigen::umeyama(own.joints.transpose(), first.joints.transpose(), true);
 }
 
-/// When a garment's own source body is the first garment's body moved (the same vertices
-/// in order, up to a similarity), that similarity: exact where skeletons, which riggers
-/// place by hand, differ a little. Unset otherwise.
-std::optional<Eigen::Matrix4d> body_frame_onto(const std::string& own, const std::string& first,
-                                               const std::vector<std::string>& first_meshes) {
-  if (own.empty() || first.empty() || is_gltf_path(own)) return std::nullopt;
-  std::error_code error;
-  if (std::filesystem::equivalent(own, first, error)) return Eigen::Matrix4d::Identity();
+/// When a garment's own source body (the file `own`) is the first garment's body moved (the
+/// same vertices in order, `first_body`, up to a similarity), that similarity: exact where
+/// skeletons, which riggers place by hand, differ a little. Unset otherwise.
+std::optional<Eigen::Matrix4d> body_frame_onto(const std::string& own,
+                                               const MatrixX3d& first_body) {
   const MatrixX3d a = read_surface_document(own).positions;
-  const MatrixX3d b = is_gltf_path(first) ? read_gltf_meshes(first, first_meshes).document.positions
-                                          : read_surface_document(first).positions;
+  const MatrixX3d& b = first_body;
   if (a.rows() != b.rows() || a.rows() < 4) return std::nullopt;
   if (a == b) return Eigen::Matrix4d::Identity();
   const Eigen::Matrix4d t = Eigen::umeyama(a.transpose(), b.transpose(), true);
@@ -261,6 +257,7 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
   for (const GarmentPaths& more : paths.more_garments)
     stems.push_back(std::filesystem::path(more.garment).stem().string());
   std::optional<Skeleton> first_skeleton;
+  std::optional<MatrixX3d> first_body;  ///< the first garment's source body's positions
   std::map<std::string, std::shared_ptr<const GltfModel>> model_of_file;
   for (std::size_t k = 0; k <= paths.more_garments.size(); ++k) {
     const GarmentPaths more = k == 0 ? GarmentPaths{} : paths.more_garments[k - 1];
@@ -282,8 +279,20 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
     layer.name = layer_name(path, layer.mesh, stems, names);
     layer.file_stem = layer_file_stem(layer.name, file_stems);
     if (k > 0) {
-      std::optional<Eigen::Matrix4d> to_first_frame =
-          body_frame_onto(more.source_body, paths.source_body, paths.source_body_meshes);
+      std::optional<Eigen::Matrix4d> to_first_frame;
+      std::error_code error;
+      const bool own_body = !more.source_body.empty() && !paths.source_body.empty() &&
+                            !is_gltf_path(more.source_body);
+      if (own_body && std::filesystem::equivalent(more.source_body, paths.source_body, error)) {
+        to_first_frame = Eigen::Matrix4d::Identity();
+      } else if (own_body) {
+        if (!first_body)  // read once for every garment
+          first_body =
+              is_gltf_path(paths.source_body)
+                  ? read_gltf_meshes(paths.source_body, paths.source_body_meshes).document.positions
+                  : read_surface_document(paths.source_body).positions;
+        to_first_frame = body_frame_onto(more.source_body, *first_body);
+      }
       if (!to_first_frame && !more.source_skeleton.empty()) {
         if (paths.source_skeleton.empty())
           throw InputError(more.source_skeleton, 0,
@@ -295,17 +304,15 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
       }
       if (to_first_frame) move_layer(*to_first_frame, layer, sim);
     }
+    layer.first_position = static_cast<int>(scene.garment_document.positions.rows());
+    layer.first_face = static_cast<int>(scene.garment_document.faces.size());
+    layer.position_count = static_cast<int>(layer.document.positions.rows());
+    layer.face_count = static_cast<int>(layer.document.faces.size());
     if (k == 0) {
       scene.garment_document = layer.document;
       scene.garment_gltf = layer.gltf;
       scene.garment = std::move(sim);
-      layer.position_count = static_cast<int>(layer.document.positions.rows());
-      layer.face_count = static_cast<int>(layer.document.faces.size());
     } else {
-      layer.first_position = static_cast<int>(scene.garment_document.positions.rows());
-      layer.first_face = static_cast<int>(scene.garment_document.faces.size());
-      layer.position_count = static_cast<int>(layer.document.positions.rows());
-      layer.face_count = static_cast<int>(layer.document.faces.size());
       append_document(scene.garment_document, layer.document);
       append_simulation_mesh(scene.garment, sim, layer.first_position, layer.first_face);
     }
