@@ -4,6 +4,8 @@
 #include <cmath>
 #include <mutex>
 
+#include <Eigen/IterativeLinearSolvers>
+
 #include "core/solver/sparse_pattern.hpp"
 
 // Thread controls of the dense kernels under CHOLMOD, looked up at run time: present when
@@ -75,6 +77,7 @@ bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, const Eigen::
     padded_ = std::move(pattern);
     cholesky_.analyzePattern(padded_);
     ++analysis_count_;
+    factorization_flops_ = cholesky_.cholmod().fl;
     diagonal_.assign(static_cast<std::size_t>(padded_.cols()), -1);
     compensation_.assign(static_cast<std::size_t>(padded_.cols()), 0.0);
     for (Eigen::Index c = 0; c < padded_.cols(); ++c)
@@ -90,9 +93,61 @@ bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& A, const Eigen::
       values[diagonal_[static_cast<std::size_t>(c)]] += shift[c];
   }
   cholesky_.factorize(padded_);
-  return cholesky_.info() == Eigen::Success;
+  factored_ = cholesky_.info() == Eigen::Success;
+  return factored_;
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const { return cholesky_.solve(b); }
+
+namespace {
+
+/// Eigen's preconditioner interface over a factorization held elsewhere: applying it is a
+/// solve with that factor.
+class HeldFactorPreconditioner {
+ public:
+  using Factor = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+
+  void hold(const Factor& factor) { factor_ = &factor; }
+  template <typename Matrix>
+  HeldFactorPreconditioner& analyzePattern(const Matrix&) { return *this; }
+  template <typename Matrix>
+  HeldFactorPreconditioner& factorize(const Matrix&) { return *this; }
+  template <typename Matrix>
+  HeldFactorPreconditioner& compute(const Matrix&) { return *this; }
+  template <typename Rhs>
+  Eigen::VectorXd solve(const Rhs& b) const { return factor_->solve(Eigen::VectorXd(b)); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+ private:
+  const Factor* factor_ = nullptr;
+};
+
+}  // namespace
+
+int LinearSolver::solve_preconditioned(const Eigen::SparseMatrix<double>& A,
+                                       const Eigen::VectorXd& shift, const Eigen::VectorXd& b,
+                                       double tolerance, int max_iterations,
+                                       Eigen::VectorXd& x) const {
+  eigen_assert(has_factor(A.rows()));
+  Eigen::SparseMatrix<double> shifted = A;
+  if (shift.size() > 0) {
+    Eigen::SparseMatrix<double> diagonal(A.rows(), A.cols());
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<std::size_t>(shift.size()));
+    for (Eigen::Index i = 0; i < shift.size(); ++i)
+      entries.emplace_back(static_cast<int>(i), static_cast<int>(i), shift[i]);
+    diagonal.setFromTriplets(entries.begin(), entries.end());
+    shifted += diagonal;
+  }
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                           HeldFactorPreconditioner>
+      cg;
+  cg.setTolerance(tolerance);
+  cg.setMaxIterations(max_iterations);
+  cg.compute(shifted);
+  cg.preconditioner().hold(cholesky_);
+  x = cg.solve(b);
+  return cg.info() == Eigen::Success ? static_cast<int>(cg.iterations()) : -1;
+}
 
 }  // namespace gr

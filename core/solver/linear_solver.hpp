@@ -41,6 +41,25 @@ class LinearSolver {
   /// Solves with the last successful factorization. @pre factorize returned true.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
+  /// Whether a factorization of an n×n matrix is held (the last factorize succeeded).
+  bool has_factor(Eigen::Index n) const { return factored_ && padded_.rows() == n; }
+  /// CHOLMOD's count of the floating-point operations one factorization with the current
+  /// symbolic analysis takes (0 before any analysis).
+  double factorization_flops() const { return factorization_flops_; }
+
+  /// Conjugate gradients on (A + diag(shift)) x = b, preconditioned by the held factor of an
+  /// earlier matrix: a matrix that changed little since that factorization is solved with a
+  /// few pairs of triangular solves instead of a new factorization. A is symmetric with both
+  /// triangles stored; x starts at 0, so each iterate is a descent direction for -b when
+  /// the matrix is positive definite. Same arithmetic in the same order on every CPU.
+  /// @param tolerance the relative residual |b - (A + diag(shift)) x| / |b| to reach.
+  /// @return the iterations taken, or -1 when `max_iterations` did not reach the tolerance
+  ///         (x then holds the last iterate).
+  /// @pre has_factor(A.rows()).
+  int solve_preconditioned(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& shift,
+                           const Eigen::VectorXd& b, double tolerance, int max_iterations,
+                           Eigen::VectorXd& x) const;
+
   /// How many symbolic analyses were run (for tests and benchmarks).
   int analysis_count() const { return analysis_count_; }
 
@@ -55,6 +74,8 @@ class LinearSolver {
   std::vector<Eigen::Index> diagonal_;  ///< position of each column's diagonal in padded_, or -1
   std::vector<double> compensation_;    ///< per column, |dropped entries| to add to its diagonal
   double pattern_slack_ = 0.0;
+  double factorization_flops_ = 0.0;
+  bool factored_ = false;
   int analysis_count_ = 0;
 };
 

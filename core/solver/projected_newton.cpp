@@ -43,6 +43,44 @@ bool ProjectedNewton::damped_direction(Problem& problem, const Eigen::SparseMatr
                                        const Eigen::VectorXd& g, Eigen::VectorXd& direction,
                                        NewtonResult& result) {
   const Eigen::VectorXd scale = damping_scale(H);
+  if (!reused_factor_direction(H, g, scale, direction, result) &&
+      !factored_direction(H, g, scale, direction, result))
+    return false;
+  clip_to_trust_radius(problem, direction);
+  return true;
+}
+
+bool ProjectedNewton::reused_factor_direction(const Eigen::SparseMatrix<double>& H,
+                                              const Eigen::VectorXd& g,
+                                              const Eigen::VectorXd& scale,
+                                              Eigen::VectorXd& direction, NewtonResult& result) {
+  if (!(options_.reuse_factor_flops > 0.0) || !linear_solver_.has_factor(H.rows()) ||
+      linear_solver_.factorization_flops() < options_.reuse_factor_flops)
+    return false;
+  if (reuse_skips_left_ > 0) {
+    --reuse_skips_left_;
+    return false;
+  }
+  const int iterations =
+      linear_solver_.solve_preconditioned(H, damping_ * scale, -g, options_.reuse_tolerance,
+                                          options_.reuse_max_iterations, direction);
+  if (iterations < 0 || !direction.allFinite() || !(direction.dot(g) < 0.0)) {
+    // Where the Hessian changes fast (pairs entering the barrier) the held factor stops
+    // helping: skip the attempt for 1, 2, 4... steps after failures in a row, so that a
+    // solve that never reuses wastes only a logarithmic number of them.
+    reuse_skips_left_ = reuse_skips_after_failure_;
+    reuse_skips_after_failure_ = std::max(1, 2 * reuse_skips_after_failure_);
+    return false;
+  }
+  reuse_skips_after_failure_ = 0;
+  ++result.reused_factor_steps;
+  result.cg_iterations += iterations;
+  return true;
+}
+
+bool ProjectedNewton::factored_direction(const Eigen::SparseMatrix<double>& H,
+                                         const Eigen::VectorXd& g, const Eigen::VectorXd& scale,
+                                         Eigen::VectorXd& direction, NewtonResult& result) {
   // A factorization can still fail where rounding meets stiffnesses far apart: more
   // damping then, up to max_damping.
   constexpr double kFailureGrowth = 100.0;
@@ -50,14 +88,16 @@ bool ProjectedNewton::damped_direction(Problem& problem, const Eigen::SparseMatr
     ++result.factorizations;
     if (linear_solver_.factorize(H, damping_ * scale)) {
       direction = -linear_solver_.solve(g);
-      if (direction.allFinite() && direction.dot(g) < 0.0) break;
+      if (direction.allFinite() && direction.dot(g) < 0.0) return true;
     }
     if (damping_ >= options_.max_damping) return false;
     damping_ = std::min(kFailureGrowth * damping_, options_.max_damping);
   }
+}
+
+void ProjectedNewton::clip_to_trust_radius(Problem& problem, Eigen::VectorXd& direction) const {
   const double length = problem.step_length(direction);
   if (length > options_.max_step_length) direction *= options_.max_step_length / length;
-  return true;
 }
 
 void ProjectedNewton::update_damping(double ratio) {
@@ -144,8 +184,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     } else {
       direction = -g;
       ++result.gradient_descent_steps;
-      const double length = problem.step_length(direction);
-      if (length > options_.max_step_length) direction *= options_.max_step_length / length;
+      clip_to_trust_radius(problem, direction);
     }
     double alpha = std::min(1.0, problem.max_step(x, direction));
     if (!(alpha > 0.0))

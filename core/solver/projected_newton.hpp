@@ -68,6 +68,23 @@ struct NewtonOptions {
   /// may be dropped (compensated on the diagonal) instead of redoing the analysis, as a
   /// fraction of the pattern's size. 0 solves with the exact Hessian.
   double pattern_slack = 0.0;
+
+  // Factor reuse. The factorization's cost grows faster than the garment (its operations
+  // about as n^1.5 on a surface mesh), while one solve with a held factor grows about as
+  // n log n; the Hessian changes little from one step to the next. So when a factorization
+  // costs at least `reuse_factor_flops` (CHOLMOD's count for the analysed pattern), the
+  // next steps solve their damped system by conjugate gradients preconditioned with the
+  // held factor, and factor anew only when that does not reach `reuse_tolerance` within
+  // `reuse_max_iterations`. 0 turns it off: every step then factors its own matrix.
+  double reuse_factor_flops = 0.0;
+  /// Relative residual of a direction solved with a held factor (an inexact Newton step:
+  /// the direction's error relative to the exact one is about this times the condition of
+  /// the preconditioned system).
+  double reuse_tolerance = 1e-3;
+  /// Conjugate-gradient iterations before a new factorization is preferred: each costs a
+  /// pair of triangular solves, and a factorization of a 100k-unknown garment costs about
+  /// as much as thirty of them.
+  int reuse_max_iterations = 12;
 };
 
 /// Reported after each accepted step.
@@ -90,6 +107,8 @@ struct NewtonResult {
   double newton_step_length = 0.0;  ///< step_length of the last Newton direction computed
   double damping = 0.0;             ///< mu at the end (relative to H's diagonal)
   int factorizations = 0;           ///< Cholesky factorizations, all steps
+  int reused_factor_steps = 0;      ///< directions solved with a held factor (no factorization)
+  int cg_iterations = 0;            ///< conjugate-gradient iterations of those directions
   int gradient_descent_steps = 0;   ///< directions taken from -g after factorization failures
   double elapsed_seconds = 0.0;
   std::string message;  ///< one line saying why the solve stopped
@@ -120,6 +139,18 @@ class ProjectedNewton {
   /// factorization fails; false when even max_damping failed.
   bool damped_direction(Problem& problem, const Eigen::SparseMatrix<double>& H,
                         const Eigen::VectorXd& g, Eigen::VectorXd& direction, NewtonResult& result);
+  /// The damped direction by conjugate gradients on the held factor (NewtonOptions' factor
+  /// reuse); false when reuse does not apply or does not converge.
+  bool reused_factor_direction(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
+                               const Eigen::VectorXd& scale, Eigen::VectorXd& direction,
+                               NewtonResult& result);
+  /// The damped direction from a new factorization, raising mu while it fails; false when
+  /// even max_damping failed.
+  bool factored_direction(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
+                          const Eigen::VectorXd& scale, Eigen::VectorXd& direction,
+                          NewtonResult& result);
+  /// Scales the direction down to the trust radius (max_step_length).
+  void clip_to_trust_radius(Problem& problem, Eigen::VectorXd& direction) const;
   /// Nielsen's update of mu from the ratio of actual to predicted decrease.
   void update_damping(double ratio);
 
@@ -127,6 +158,8 @@ class ProjectedNewton {
   LinearSolver linear_solver_;
   double damping_ = -1.0;        ///< mu; negative until the first solve sets it
   double damping_growth_ = 2.0;  ///< Nielsen's nu: how much the next rejection raises mu
+  int reuse_skips_left_ = 0;     ///< steps that factor without trying the held factor first
+  int reuse_skips_after_failure_ = 0;  ///< reuse_skips_left_ after the next failed reuse
 };
 
 }  // namespace gr

@@ -1,4 +1,5 @@
 #include <filesystem>
+#include <vector>
 
 #include <dlfcn.h>
 
@@ -25,6 +26,65 @@ TEST_CASE("the linear solver factors and solves a positive definite system", "[s
   REQUIRE(solver.factorize(A));
   CHECK((solver.solve(b) - x).cwiseAbs().maxCoeff() < 1e-12);
   CHECK(solver.analysis_count() == 1);
+}
+
+namespace {
+
+/// Tridiagonal [-1, d_i, -1] with d_i = diagonal + slope i: positive definite for diagonal > 2.
+Eigen::SparseMatrix<double> tridiagonal(int n, double diagonal, double slope) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, diagonal + slope * i);
+    if (i + 1 < n) {
+      entries.emplace_back(i, i + 1, -1.0);
+      entries.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("a held factor preconditions conjugate gradients on a changed matrix",
+          "[solver][reuse]") {
+  const int n = 200;
+  gr::LinearSolver solver;
+  CHECK_FALSE(solver.has_factor(n));
+  CHECK(solver.factorization_flops() == 0.0);
+  REQUIRE(solver.factorize(tridiagonal(n, 3.0, 0.0)));
+  CHECK(solver.has_factor(n));
+  CHECK_FALSE(solver.has_factor(n + 1));
+  CHECK(solver.factorization_flops() > 0.0);
+
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  const Eigen::VectorXd shift = Eigen::VectorXd::Constant(n, 0.25);
+  SECTION("a matrix close to the factored one: a few iterations reach the tolerance") {
+    const Eigen::SparseMatrix<double> A = tridiagonal(n, 3.0, 0.001);
+    Eigen::SparseMatrix<double> shifted = A;
+    for (int i = 0; i < n; ++i) shifted.coeffRef(i, i) += shift[i];
+    const Eigen::VectorXd b = shifted * x;
+    Eigen::VectorXd solution;
+    const int iterations = solver.solve_preconditioned(A, shift, b, 1e-10, 50, solution);
+    CAPTURE(iterations);
+    CHECK(iterations > 0);
+    CHECK(iterations < 20);
+    CHECK((shifted * solution - b).norm() <= 1e-10 * b.norm());
+    CHECK((solution - x).cwiseAbs().maxCoeff() < 1e-8);
+    // The same arithmetic gives the same bits.
+    Eigen::VectorXd again;
+    CHECK(solver.solve_preconditioned(A, shift, b, 1e-10, 50, again) == iterations);
+    CHECK(again == solution);
+  }
+  SECTION("too few iterations for the tolerance: -1, and a descent direction still") {
+    const Eigen::SparseMatrix<double> A = tridiagonal(n, 3.0, 1.0);
+    const Eigen::VectorXd b = A * x;
+    Eigen::VectorXd solution;
+    CHECK(solver.solve_preconditioned(A, Eigen::VectorXd(), b, 1e-12, 2, solution) == -1);
+    REQUIRE(solution.size() == n);
+    CHECK(solution.dot(b) > 0.0);
+  }
 }
 
 #ifdef GR_PORTABLE_BLAS_DIR

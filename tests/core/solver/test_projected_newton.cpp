@@ -115,6 +115,47 @@ TEST_CASE("projected Newton: Rosenbrock pairs with PSD projection", "[solver][ne
   CHECK(result.iterations < 100);
 }
 
+TEST_CASE("projected Newton: a held factor is reused across steps where it still converges",
+          "[solver][newton][reuse]") {
+  const auto start = [] {
+    Eigen::VectorXd x(40);
+    for (int i = 0; i < 20; ++i) x.segment<2>(2 * i) << -1.2 + 0.05 * i, 1.0 - 0.1 * i;
+    return x;
+  };
+  RosenbrockProblem problem(20);
+  Eigen::VectorXd exact = start();
+  ProjectedNewton factoring;
+  const NewtonResult factored = factoring.minimize(problem, exact);
+  REQUIRE(factored.status == SolverStatus::kConverged);
+  CHECK(factored.reused_factor_steps == 0);
+  CHECK(factored.factorizations >= factored.iterations);
+
+  Eigen::VectorXd reused = start();
+  ProjectedNewton reusing;
+  reusing.options().reuse_factor_flops = 1.0;  // this small system qualifies
+  reusing.options().reuse_tolerance = 1e-6;
+  const NewtonResult result = reusing.minimize(problem, reused);
+  CAPTURE(result.iterations, result.factorizations, result.reused_factor_steps,
+          result.cg_iterations);
+  CHECK(result.status == SolverStatus::kConverged);
+  CHECK(result.reused_factor_steps > 0);
+  CHECK(result.cg_iterations >= result.reused_factor_steps);
+  CHECK(result.factorizations < result.iterations);
+  CHECK((reused - Eigen::VectorXd::Ones(40)).lpNorm<Eigen::Infinity>() < 1e-5);
+
+  SECTION("off (0), or above the factorization's cost: every step factors") {
+    for (const double threshold : {0.0, 1e30}) {
+      Eigen::VectorXd x = start();
+      ProjectedNewton newton;
+      newton.options().reuse_factor_flops = threshold;
+      const NewtonResult off = newton.minimize(problem, x);
+      CHECK(off.reused_factor_steps == 0);
+      CHECK(off.iterations == factored.iterations);
+      CHECK(x == exact);
+    }
+  }
+}
+
 /// Rosenbrock pairs whose goal is met once every x is within `reach` of the minimizer's 1.
 class RosenbrockWithGoal : public RosenbrockProblem {
  public:
