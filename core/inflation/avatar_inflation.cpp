@@ -55,6 +55,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     const double t_before = layout.t(x);
     const NewtonResult solve = newton.minimize(problem, x, on_newton_step);
     result.newton_iterations += solve.iterations;
+    result.factorizations += solve.factorizations;
     if (solve.status == SolverStatus::kNonFiniteEnergy)
       return finish(InflationStatus::kSolverFailure,
                     fmt::format("round {}: {}", result.rounds, solve.message));

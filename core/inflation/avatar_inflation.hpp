@@ -39,6 +39,7 @@ struct InflationResult {
   double t_before_snap = 0.0;
   int rounds = 0;
   int newton_iterations = 0;  ///< summed over rounds
+  int factorizations = 0;     ///< Cholesky factorizations, summed over rounds
   int resets = 0;
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free_fraction = 0.0;

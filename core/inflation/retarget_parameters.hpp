@@ -61,11 +61,13 @@ struct RetargetParameters {
   /// eps_tol, step tolerance, iteration cap of each solve; a Newton step moves no vertex
   /// (garment, or avatar through t) more than 0.1 units at once (in the fit; the inflation
   /// has its own cap below); new contact pairs up to
-  /// 0.1% of the Hessian's pattern reuse its symbolic analysis.
+  /// 0.1% of the Hessian's pattern reuse its symbolic analysis; a factorization of at least
+  /// 1e9 operations (a garment of about 15k faces) is reused across steps.
   NewtonOptions newton = [] {
     NewtonOptions options;
     options.max_step_length = 0.1;
     options.pattern_slack = 0.001;
+    options.reuse_factor_flops = 1e9;
     return options;
   }();
   /// The inflation's cap on a Newton step's vertex motion (instead of newton's). Small

@@ -3,11 +3,14 @@
 // ends of its edge are). Per level the wall and CPU time, Newton steps, peak memory, shape,
 // fit error and certificate, and each as a ratio to the 1× run of the same scene, as a
 // Markdown table on stdout and results.csv in --out (tools/bench/plot_dense.py plots it).
+// With --reuse-factor-gflops a,b,... every level runs once per threshold of factor reuse
+// (0: every Newton step factors), so that the solves compare within one run.
 // Each run's peak resident memory is its own: the process's high-water mark (VmHWM) is
 // reset before it (/proc/self/clear_refs).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -61,11 +64,12 @@ gr::TriangleMesh read_garment(const std::string& path) {
   return mesh;
 }
 
-std::vector<int> parse_levels(const std::string& text) {
-  std::vector<int> levels;
+template <typename Number>
+std::vector<Number> parse_list(const std::string& text) {
+  std::vector<Number> values;
   std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) levels.push_back(std::stoi(item));
-  return levels;
+  for (std::string item; std::getline(in, item, ',');) values.push_back(Number(std::stod(item)));
+  return values;
 }
 
 }  // namespace
@@ -84,24 +88,36 @@ int main(int argc, char** argv) {
                  "given, 1: 4× its faces, 2: 16×)");
   app.add_option("--scene", only, "Run only this scene (skirt_foxgirl or puffer_goblin)");
   app.add_option("--threads", threads, "Worker threads");
+  std::string reuse_text;
+  app.add_option("--reuse-factor-gflops", reuse_text,
+                 "Thresholds of factor reuse to run each level with, comma-separated "
+                 "(default: the preset's)");
   CLI11_PARSE(app, argc, argv);
-  const std::vector<int> levels = parse_levels(levels_text);
+  const std::vector<int> levels = parse_list<int>(levels_text);
+  std::vector<std::optional<double>> reuse_thresholds{std::nullopt};
+  if (!reuse_text.empty()) {
+    reuse_thresholds.clear();
+    for (const double gflops : parse_list<double>(reuse_text)) reuse_thresholds.push_back(gflops);
+  }
 
   fs::create_directories(out);
   std::ofstream csv(fs::path(out) / "results.csv");
-  csv << "scene,level,faces,status,certified,wall_seconds,cpu_seconds,wall_ratio,cpu_ratio,"
-         "newton_inflate,newton_fit,peak_memory_mb,edge_change_mean,edge_change_p95,"
+  csv << "scene,level,faces,reuse_gflops,status,certified,wall_seconds,cpu_seconds,wall_ratio,"
+         "cpu_ratio,newton_inflate,newton_fit,factorizations_inflate,factorizations_fit,"
+         "inflate_seconds,fit_seconds,peak_memory_mb,edge_change_mean,edge_change_p95,"
          "fit_error_mean,fit_error_p95\n";
   std::printf(
-      "| scene | faces | wall s | CPU s | × 1× (CPU) | Newton (inflate/fit) | peak MB | "
-      "edge change mean | fit error mean | certified |\n"
-      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+      "| scene | faces | reuse GFLOP | wall s | CPU s | × 1× (CPU) | Newton (inflate/fit) | "
+      "factorizations (inflate/fit) | inflate s | fit s | peak MB | edge change mean | "
+      "fit error mean | certified |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const DenseScene& scene : shared_scenes()) {
     if (!only.empty() && scene.name != only) continue;
     gr::TriangleMesh garment = read_garment(scene.paths.garment);
     std::vector<int> no_fit_list =
         gr::read_vertex_list(scene.paths.no_fit, static_cast<int>(garment.vertices.rows()));
-    double base_wall = 0.0, base_cpu = 0.0;
+    std::vector<double> base_wall(reuse_thresholds.size(), 0.0);
+    std::vector<double> base_cpu(reuse_thresholds.size(), 0.0);
     int level_reached = 0;
     for (const int level : levels) {
       for (; level_reached < level; ++level_reached) {
@@ -123,39 +139,50 @@ int main(int argc, char** argv) {
         std::ofstream list(paths.no_fit);
         for (const int v : no_fit_list) list << v << '\n';
       }
-      gr::RetargetOptions options;
-      options.inputs = paths;
-      options.skirt = scene.skirt;
-      options.quality = gr::parse_quality(quality);
-      options.threads = threads;
-      options.quiet = true;
-      options.out_dir = (dir / "run").string();
-      gr::bench::reset_peak_memory();
-      const double cpu_before = gr::bench::cpu_seconds();
-      const gr::Stopwatch clock;
-      const gr::RetargetResult result = gr::run_retarget(options);
-      const double wall = clock.seconds();
-      const double cpu = gr::bench::cpu_seconds() - cpu_before;
-      const double peak_mb = gr::bench::peak_memory_since_reset_mb();
-      if (base_wall == 0.0) {
-        base_wall = wall;
-        base_cpu = cpu;
+      for (std::size_t k = 0; k < reuse_thresholds.size(); ++k) {
+        gr::RetargetOptions options;
+        options.inputs = paths;
+        options.skirt = scene.skirt;
+        options.quality = gr::parse_quality(quality);
+        options.threads = threads;
+        options.quiet = true;
+        if (reuse_thresholds[k]) options.overrides.set("reuse_factor_gflops", *reuse_thresholds[k]);
+        const std::string reuse_label =
+            reuse_thresholds[k] ? fmt::format("{:g}", *reuse_thresholds[k]) : "preset";
+        options.out_dir = (dir / fmt::format("run_reuse_{}", reuse_label)).string();
+        gr::bench::reset_peak_memory();
+        const double cpu_before = gr::bench::cpu_seconds();
+        const gr::Stopwatch clock;
+        const gr::RetargetResult result = gr::run_retarget(options);
+        const double wall = clock.seconds();
+        const double cpu = gr::bench::cpu_seconds() - cpu_before;
+        const double peak_mb = gr::bench::peak_memory_since_reset_mb();
+        if (base_wall[k] == 0.0) {
+          base_wall[k] = wall;
+          base_cpu[k] = cpu;
+        }
+        const gr::RetargetReport& r = result.report;
+        const auto faces = garment.faces.rows();
+        csv << fmt::format(
+            "{},{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{},{},{:.2f},{:.2f},{:.0f},{:.4f},"
+            "{:.4f},{:.4g},{:.4g}\n",
+            scene.name, level, faces, reuse_label, gr::to_string(result.status),
+            r.certified() ? 1 : 0, wall, cpu, wall / base_wall[k], cpu / base_cpu[k],
+            r.inflate.newton_iterations, r.fit.newton_iterations, r.inflate.factorizations,
+            r.fit.factorizations, r.seconds.inflate, r.seconds.fit, peak_mb,
+            r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
+            r.certify.fit_error.mean, r.certify.fit_error.p95);
+        csv.flush();
+        std::printf(
+            "| %s | %ld | %s | %.1f | %.1f | %.1f | %d/%d | %d/%d | %.1f | %.1f | %.0f | %.3f | "
+            "%.3g | %s |\n",
+            scene.name.c_str(), static_cast<long>(faces), reuse_label.c_str(), wall, cpu,
+            cpu / base_cpu[k], r.inflate.newton_iterations, r.fit.newton_iterations,
+            r.inflate.factorizations, r.fit.factorizations, r.seconds.inflate, r.seconds.fit,
+            peak_mb, r.certify.shape.mean_edge_change, r.certify.fit_error.mean,
+            r.certified() ? "yes" : "no");
+        std::fflush(stdout);
       }
-      const gr::RetargetReport& r = result.report;
-      const auto faces = garment.faces.rows();
-      csv << fmt::format(
-          "{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{:.0f},{:.4f},{:.4f},{:.4g},{:.4g}\n",
-          scene.name, level, faces, gr::to_string(result.status), r.certified() ? 1 : 0, wall, cpu,
-          wall / base_wall, cpu / base_cpu, r.inflate.newton_iterations, r.fit.newton_iterations,
-          peak_mb, r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
-          r.certify.fit_error.mean, r.certify.fit_error.p95);
-      csv.flush();
-      std::printf("| %s | %ld | %.1f | %.1f | %.1f | %d/%d | %.0f | %.3f | %.3g | %s |\n",
-                  scene.name.c_str(), static_cast<long>(faces), wall, cpu, cpu / base_cpu,
-                  r.inflate.newton_iterations, r.fit.newton_iterations, peak_mb,
-                  r.certify.shape.mean_edge_change, r.certify.fit_error.mean,
-                  r.certified() ? "yes" : "no");
-      std::fflush(stdout);
     }
   }
   return 0;

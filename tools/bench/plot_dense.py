@@ -1,6 +1,6 @@
 """Plots, from dense_benchmark's CSV, CPU time, Newton steps and peak memory against the
-garment's faces, on log-log axes, one curve per scene, with a line of slope 1 (linear
-cost) through each scene's coarsest run for comparison."""
+garment's faces, on log-log axes, one curve per scene and factor-reuse threshold, with a
+line of slope 1 (linear cost) through each curve's coarsest run for comparison."""
 
 import csv
 import sys
@@ -15,7 +15,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 def main(csv_path, png_path):
     by_scene = defaultdict(list)
     for row in csv.DictReader(open(csv_path)):
-        by_scene[row["scene"]].append(row)
+        reuse = row.get("reuse_gflops", "preset")
+        name = row["scene"] if reuse == "preset" else f'{row["scene"]}, reuse {reuse} GFLOP'
+        by_scene[name].append(row)
     panels = [("cpu_seconds", "CPU time (s)"),
               (None, "Newton steps (inflate + fit)"),
               ("peak_memory_mb", "peak resident memory (MB)")]

@@ -97,6 +97,7 @@ struct InflateReport {
   int al_rounds = 0;
   int resets = 0;
   int newton_iterations = 0;
+  int factorizations = 0;  ///< Cholesky factorizations; the other steps reused a factor
   std::string status;
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free = 0.0;
@@ -105,6 +106,7 @@ struct InflateReport {
 /// Fit: the garment settled onto the body, and what the solver modelled.
 struct FitReport {
   int newton_iterations = 0;
+  int factorizations = 0;  ///< Cholesky factorizations; the other steps reused a factor
   std::string status;
   std::map<std::string, double> energies;  ///< each term's value after the fit
   std::vector<std::string> terms;

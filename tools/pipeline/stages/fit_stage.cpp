@@ -48,6 +48,7 @@ FitOutput run_fit(const FitInput& input, const FitOptions& options, Progress& pr
   const FitResult& fit = out.fit;
   FitReport& report = out.report;
   report.newton_iterations = fit.solve.iterations;
+  report.factorizations = fit.solve.factorizations;
   report.fold_free = fit.fold_free_fraction;
   report.status = to_string(fit.solve.status);
   out.seconds = timer.seconds();

@@ -32,6 +32,7 @@ InflateOutput run_inflate(const InflateInput& input, const InflateOptions& optio
   out.report.al_rounds = inflation.rounds;
   out.report.resets = inflation.resets;
   out.report.newton_iterations = inflation.newton_iterations;
+  out.report.factorizations = inflation.factorizations;
   out.report.fold_free = inflation.fold_free_fraction;
   out.report.status = to_string(inflation.status);
   out.seconds = timer.seconds();
@@ -42,6 +43,7 @@ void add_inflation_attempt(InflateReport& total, const InflateReport& attempt) {
   total.al_rounds += attempt.al_rounds;
   total.resets += attempt.resets;
   total.newton_iterations += attempt.newton_iterations;
+  total.factorizations += attempt.factorizations;
   total.fold_free = attempt.fold_free;
   total.status = attempt.status;
 }
