@@ -109,13 +109,21 @@ class HeldFactorPreconditioner {
 
   void hold(const Factor& factor) { factor_ = &factor; }
   template <typename Matrix>
-  HeldFactorPreconditioner& analyzePattern(const Matrix&) { return *this; }
+  HeldFactorPreconditioner& analyzePattern(const Matrix&) {
+    return *this;
+  }
   template <typename Matrix>
-  HeldFactorPreconditioner& factorize(const Matrix&) { return *this; }
+  HeldFactorPreconditioner& factorize(const Matrix&) {
+    return *this;
+  }
   template <typename Matrix>
-  HeldFactorPreconditioner& compute(const Matrix&) { return *this; }
+  HeldFactorPreconditioner& compute(const Matrix&) {
+    return *this;
+  }
   template <typename Rhs>
-  Eigen::VectorXd solve(const Rhs& b) const { return factor_->solve(Eigen::VectorXd(b)); }
+  Eigen::VectorXd solve(const Rhs& b) const {
+    return factor_->solve(Eigen::VectorXd(b));
+  }
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 
  private:

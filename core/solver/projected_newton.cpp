@@ -61,9 +61,8 @@ bool ProjectedNewton::reused_factor_direction(const Eigen::SparseMatrix<double>&
     --reuse_skips_left_;
     return false;
   }
-  const int iterations =
-      linear_solver_.solve_preconditioned(H, damping_ * scale, -g, options_.reuse_tolerance,
-                                          options_.reuse_max_iterations, direction);
+  const int iterations = linear_solver_.solve_preconditioned(
+      H, damping_ * scale, -g, options_.reuse_tolerance, options_.reuse_max_iterations, direction);
   if (iterations < 0 || !direction.allFinite() || !(direction.dot(g) < 0.0)) {
     // Where the Hessian changes fast (pairs entering the barrier) the held factor stops
     // helping: skip the attempt for 1, 2, 4... steps after failures in a row, so that a

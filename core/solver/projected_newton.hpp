@@ -156,9 +156,9 @@ class ProjectedNewton {
 
   NewtonOptions options_;
   LinearSolver linear_solver_;
-  double damping_ = -1.0;        ///< mu; negative until the first solve sets it
-  double damping_growth_ = 2.0;  ///< Nielsen's nu: how much the next rejection raises mu
-  int reuse_skips_left_ = 0;     ///< steps that factor without trying the held factor first
+  double damping_ = -1.0;              ///< mu; negative until the first solve sets it
+  double damping_growth_ = 2.0;        ///< Nielsen's nu: how much the next rejection raises mu
+  int reuse_skips_left_ = 0;           ///< steps that factor without trying the held factor first
   int reuse_skips_after_failure_ = 0;  ///< reuse_skips_left_ after the next failed reuse
 };
 
