@@ -31,7 +31,7 @@ def main(csv_path, png_path):
             else:
                 values = [float(r[column]) for r in rows]
             line, = ax.plot(faces, values, "o-", label=scene)
-            if column == "cpu_seconds":
+            if column == "cpu_seconds" and "reuse 0 " not in scene + " ":
                 ax.plot(faces, [values[0] * f / faces[0] for f in faces], "--",
                         color=line.get_color(), alpha=0.5, label=f"{scene}, linear")
         ax.set_xscale("log")
