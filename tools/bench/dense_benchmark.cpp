@@ -1,6 +1,7 @@
 // Dense garments: the shared skirt and puffer retargeted at 1×, 4×, 16×... their faces (each
 // level one midpoint subdivision, the no-fit list carried: a midpoint is listed when both
-// ends of its edge are). Per level the wall and CPU time, Newton steps, peak memory, shape,
+// ends of its edge are), and a production shirt (skinned glTF) as it comes, at 1× only. Per
+// level the wall and CPU time, Newton steps, factorizations, peak memory, shape,
 // fit error and certificate, and each as a ratio to the 1× run of the same scene, as a
 // Markdown table on stdout and results.csv in --out (tools/bench/plot_dense.py plots it).
 // With --reuse-factor-gflops a,b,... every level runs once per threshold of factor reuse
