@@ -82,8 +82,8 @@ struct NewtonOptions {
   /// the preconditioned system).
   double reuse_tolerance = 1e-3;
   /// Conjugate-gradient iterations before a new factorization is preferred: each costs a
-  /// pair of triangular solves, and a factorization of a 100k-unknown garment costs about
-  /// as much as thirty of them.
+  /// pair of triangular solves, and a dense garment's factorization costs a few dozen of
+  /// them (tools/bench/results/dense.md).
   int reuse_max_iterations = 12;
 };
 
