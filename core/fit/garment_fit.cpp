@@ -23,7 +23,8 @@ double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const Matrix
 }
 
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
-                      const RetargetParameters& parameters, const NewtonCallback& on_newton_step) {
+                      const RetargetParameters& parameters, const NewtonCallback& on_newton_step,
+                      const GuidePath& guide) {
   RetargetParameters fit_parameters = parameters;
   fit_parameters.dhat = parameters.fit_support();
   GarmentProblem problem(scene, fit_parameters, GarmentProblem::Stage::kFit,
@@ -31,8 +32,14 @@ FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3
   Eigen::VectorXd x = problem.layout().pack(1.0, inflated);
   NewtonOptions options = parameters.newton;
   options.max_iterations = parameters.fit_iteration_cap();
-  ProjectedNewton newton(options);
   FitResult result;
+  if (guide.size > 0) {
+    result.guide = follow_guide(problem, x, guide);
+    if (parameters.guided_fit_max_iterations > 0)
+      options.max_iterations =
+          std::min(options.max_iterations, parameters.guided_fit_max_iterations);
+  }
+  ProjectedNewton newton(options);
   result.solve = newton.minimize(problem, x, on_newton_step);
   result.garment = problem.layout().garment(x);
   result.fold_free_fraction = problem.contact().mean_fold_free_fraction();

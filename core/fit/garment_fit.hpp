@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/inflation/garment_problem.hpp"
+#include "core/solver/guide_path.hpp"
 
 namespace gr {
 
@@ -13,6 +14,7 @@ struct FitResult {
   MatrixX3d garment;   ///< #Vg×3, the last accepted point whatever the status
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free_fraction = 0.0;
+  GuideFollowed guide;  ///< how far the guide led (no points without one)
 
   // Measured on the problem the fit minimized, at the returned garment.
   /// The terms it modelled (GarmentProblem::term_names).
@@ -38,8 +40,11 @@ double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const Matrix
 /// @param inflated #Vg×3, the inflation's result: intersection free against A.
 /// @throw std::invalid_argument when scene.distance_field is null or the sample count is
 ///        not 1, 3 or 6; InputError as GarmentProblem's constructor.
+/// @param guide points in the fit's dofs (the garment's #Vg×3 positions row by row) that the
+///        garment passes through before the solve (follow_guide); the solve then stops after
+///        parameters.guided_fit_max_iterations steps when that is positive.
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
                       const RetargetParameters& parameters,
-                      const NewtonCallback& on_newton_step = {});
+                      const NewtonCallback& on_newton_step = {}, const GuidePath& guide = {});
 
 }  // namespace gr

@@ -24,7 +24,7 @@ const char* to_string(InflationStatus status) {
 
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
                                const InflationCallback& on_round,
-                               const NewtonCallback& on_newton_step) {
+                               const NewtonCallback& on_newton_step, const InflationGuide& guide) {
   const Stopwatch stopwatch;
   GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
   const DofLayout& layout = problem.layout();
@@ -36,6 +36,11 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
   const Eigen::VectorXd initial = layout.pack(0.0, scene.garment.vertices);
   Eigen::VectorXd x = initial;
   InflationResult result;
+  if (guide.path.size > 0) result.guide = follow_guide(problem, x, guide.path);
+  if (guide.lambda1 > 0.0) {
+    al.lambda1 = guide.lambda1;
+    al.lambda2 = guide.lambda2;
+  }
   const auto finish = [&](InflationStatus status, std::string message) {
     result.status = status;
     result.message = std::move(message);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/inflation/garment_problem.hpp"
+#include "core/solver/guide_path.hpp"
 
 namespace gr {
 
@@ -45,8 +46,16 @@ struct InflationResult {
   double fold_free_fraction = 0.0;
   double lambda1 = 0.0, lambda2 = 0.0;
   double elapsed_seconds = 0.0;
+  GuideFollowed guide;  ///< how far the guide led (no points without one)
   std::string message;
   bool succeeded() const { return status == InflationStatus::kSnapped; }
+};
+
+/// Where a coarse solve of the same scene says the inflation goes.
+struct InflationGuide {
+  GuidePath path;        ///< [t, Vg] points the garment passes through before the first round
+  double lambda1 = 0.0;  ///< the augmented Lagrangian's start; 0: the parameters' own
+  double lambda2 = 0.0;
 };
 
 /// Step 2, Algorithm 1: augmented Lagrangian on t = 1 over x = [t, Vg], starting from the
@@ -58,10 +67,13 @@ struct InflationResult {
 /// also ends, kStalled, after parameters.max_stalled_rounds rounds in a row in which t
 /// gained less than 1% of its remaining distance to 1: raising lambda1 cannot move a
 /// pinched garment. A round that resets does not count.
+/// With a guide, the rounds start where follow_guide led along its path, with its
+/// multipliers; a reset still goes back to the initial garment at t = 0.
 /// @pre the initial garment and A0 are intersection free (the shrink step's invariant).
 /// @throw std::invalid_argument, InputError as GarmentProblem's constructor.
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
                                const InflationCallback& on_round = {},
-                               const NewtonCallback& on_newton_step = {});
+                               const NewtonCallback& on_newton_step = {},
+                               const InflationGuide& guide = {});
 
 }  // namespace gr

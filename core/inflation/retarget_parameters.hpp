@@ -52,6 +52,9 @@ struct RetargetParameters {
   int fit_iteration_cap() const {
     return fit_max_iterations > 0 ? fit_max_iterations : newton.max_iterations;
   }
+  /// The Newton step cap of a fit that starts where a coarse proxy's fit led (coarse to
+  /// fine): it polishes a nearly converged garment; 0: fit_iteration_cap().
+  int guided_fit_max_iterations = 0;
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;      ///< model garment–garment contact
   /// Model it everywhere, also inside regions that provably cannot fold onto themselves

@@ -233,7 +233,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
       recent_energies.pop_front();
     problem.solution_changed(x);
     if (progress)
-      progress({result.iterations, energy, alpha, result.gradient_norm, elapsed(), damping_});
+      progress({result.iterations, energy, alpha, result.gradient_norm, elapsed(), damping_, &x});
   }
 }
 

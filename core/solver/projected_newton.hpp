@@ -95,6 +95,7 @@ struct NewtonProgress {
   double gradient_norm;    ///< ||g||_2 at the point before the step
   double elapsed_seconds;  ///< since the solve started
   double damping;          ///< Levenberg–Marquardt mu for the next step
+  const Eigen::VectorXd* point = nullptr;  ///< the accepted point, valid during the call
 };
 
 using NewtonCallback = std::function<void(const NewtonProgress&)>;

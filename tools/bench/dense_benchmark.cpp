@@ -99,29 +99,54 @@ int main(int argc, char** argv) {
   app.add_option("--scene", only,
                  "Run only this scene (skirt_foxgirl, puffer_goblin or shirt_female)");
   app.add_option("--threads", threads, "Worker threads");
-  std::string reuse_text;
+  std::string reuse_text, proxy_text;
   app.add_option("--reuse-factor-gflops", reuse_text,
                  "Thresholds of factor reuse to run each level with, comma-separated "
                  "(default: the preset's)");
+  app.add_option("--proxy-faces", proxy_text,
+                 "Proxy sizes (coarse to fine) to run each level with, comma-separated; 0 "
+                 "solves directly (default: the preset's)");
   CLI11_PARSE(app, argc, argv);
   const std::vector<int> levels = parse_list<int>(levels_text);
+  // Each level runs once per variant: every reuse threshold with every proxy size.
+  struct Variant {
+    std::optional<double> reuse_gflops;
+    std::optional<int> proxy_faces;
+    std::string reuse_label() const {
+      return reuse_gflops ? fmt::format("{:g}", *reuse_gflops) : "preset";
+    }
+    std::string proxy_label() const {
+      return proxy_faces ? fmt::format("{}", *proxy_faces) : "preset";
+    }
+  };
   std::vector<std::optional<double>> reuse_thresholds{std::nullopt};
   if (!reuse_text.empty()) {
     reuse_thresholds.clear();
     for (const double gflops : parse_list<double>(reuse_text)) reuse_thresholds.push_back(gflops);
   }
+  std::vector<std::optional<int>> proxy_sizes{std::nullopt};
+  if (!proxy_text.empty()) {
+    proxy_sizes.clear();
+    for (const int faces : parse_list<int>(proxy_text)) proxy_sizes.push_back(faces);
+  }
+  std::vector<Variant> variants;
+  for (const auto& reuse : reuse_thresholds)
+    for (const auto& proxy : proxy_sizes) variants.push_back({reuse, proxy});
 
   fs::create_directories(out);
   std::ofstream csv(fs::path(out) / "results.csv");
-  csv << "scene,level,faces,reuse_gflops,status,certified,wall_seconds,cpu_seconds,wall_ratio,"
+  csv << "scene,level,faces,reuse_gflops,proxy_faces,proxy_used,status,certified,wall_seconds,cpu_"
+         "seconds,wall_ratio,"
          "cpu_ratio,newton_inflate,newton_fit,factorizations_inflate,factorizations_fit,"
          "inflate_seconds,fit_seconds,peak_memory_mb,edge_change_mean,edge_change_p95,"
-         "fit_error_mean,fit_error_p95\n";
+         "fit_error_mean,fit_error_p95,proxy_seconds\n";
   std::printf(
-      "| scene | faces | reuse GFLOP | wall s | CPU s | × 1× (CPU) | Newton (inflate/fit) | "
+      "| scene | faces | reuse GFLOP | proxy faces | wall s | CPU s | × 1× (CPU) | Newton "
+      "(inflate/fit) | "
       "factorizations (inflate/fit) | inflate s | fit s | peak MB | edge change mean | "
       "fit error mean | certified |\n"
-      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
+      "|\n");
   for (const DenseScene& scene : shared_scenes()) {
     if (!only.empty() && scene.name != only) continue;
     gr::TriangleMesh garment;
@@ -131,8 +156,8 @@ int main(int argc, char** argv) {
       no_fit_list =
           gr::read_vertex_list(scene.paths.no_fit, static_cast<int>(garment.vertices.rows()));
     }
-    std::vector<double> base_wall(reuse_thresholds.size(), 0.0);
-    std::vector<double> base_cpu(reuse_thresholds.size(), 0.0);
+    std::vector<double> base_wall(variants.size(), 0.0);
+    std::vector<double> base_cpu(variants.size(), 0.0);
     int level_reached = 0;
     for (const int level : levels) {
       if (!scene.refinable && level > 0) continue;
@@ -155,17 +180,21 @@ int main(int argc, char** argv) {
         std::ofstream list(paths.no_fit);
         for (const int v : no_fit_list) list << v << '\n';
       }
-      for (std::size_t k = 0; k < reuse_thresholds.size(); ++k) {
+      for (std::size_t k = 0; k < variants.size(); ++k) {
+        const Variant& variant = variants[k];
         gr::RetargetOptions options;
         options.inputs = paths;
         options.skirt = scene.skirt;
         options.quality = gr::parse_quality(quality);
         options.threads = threads;
         options.quiet = true;
-        if (reuse_thresholds[k]) options.overrides.set("reuse_factor_gflops", *reuse_thresholds[k]);
-        const std::string reuse_label =
-            reuse_thresholds[k] ? fmt::format("{:g}", *reuse_thresholds[k]) : "preset";
-        options.out_dir = (dir / fmt::format("run_reuse_{}", reuse_label)).string();
+        if (variant.reuse_gflops)
+          options.overrides.set("reuse_factor_gflops", *variant.reuse_gflops);
+        if (variant.proxy_faces) options.overrides.set("proxy_faces", *variant.proxy_faces);
+        const std::string reuse_label = variant.reuse_label();
+        const std::string proxy_label = variant.proxy_label();
+        options.out_dir =
+            (dir / fmt::format("run_reuse_{}_proxy_{}", reuse_label, proxy_label)).string();
         gr::bench::reset_peak_memory();
         const double cpu_before = gr::bench::cpu_seconds();
         const gr::Stopwatch clock;
@@ -180,22 +209,24 @@ int main(int argc, char** argv) {
         const gr::RetargetReport& r = result.report;
         const int faces = r.normalize.garment_faces;
         csv << fmt::format(
-            "{},{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{},{},{:.2f},{:.2f},{:.0f},{:.4f},"
-            "{:.4f},{:.4g},{:.4g}\n",
-            scene.name, level, faces, reuse_label, gr::to_string(result.status),
-            r.certified() ? 1 : 0, wall, cpu, wall / base_wall[k], cpu / base_cpu[k],
-            r.inflate.newton_iterations, r.fit.newton_iterations, r.inflate.factorizations,
-            r.fit.factorizations, r.seconds.inflate, r.seconds.fit, peak_mb,
-            r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
-            r.certify.fit_error.mean, r.certify.fit_error.p95);
+            "{},{},{},{},{},{},{},{},{:.2f},{:.2f},{:.2f},{:.2f},{},{},{},{},{:.2f},{:.2f},{:.0f},"
+            "{:.4f},{:.4f},{:.4g},{:.4g},{:.2f}\n",
+            scene.name, level, faces, reuse_label, proxy_label, r.proxy.used ? 1 : 0,
+            gr::to_string(result.status), r.certified() ? 1 : 0, wall, cpu, wall / base_wall[k],
+            cpu / base_cpu[k], r.inflate.newton_iterations, r.fit.newton_iterations,
+            r.inflate.factorizations, r.fit.factorizations, r.seconds.inflate, r.seconds.fit,
+            peak_mb, r.certify.shape.mean_edge_change, r.certify.shape.p95_edge_change,
+            r.certify.fit_error.mean, r.certify.fit_error.p95, r.seconds.proxy);
         csv.flush();
         std::printf(
-            "| %s | %d | %s | %.1f | %.1f | %.1f | %d/%d | %d/%d | %.1f | %.1f | %.0f | %.3f | "
+            "| %s | %d | %s | %s | %.1f | %.1f | %.1f | %d/%d | %d/%d | %.1f | %.1f | %.0f | %.3f "
+            "| "
             "%.3g | %s |\n",
-            scene.name.c_str(), faces, reuse_label.c_str(), wall, cpu, cpu / base_cpu[k],
-            r.inflate.newton_iterations, r.fit.newton_iterations, r.inflate.factorizations,
-            r.fit.factorizations, r.seconds.inflate, r.seconds.fit, peak_mb,
-            r.certify.shape.mean_edge_change, r.certify.fit_error.mean,
+            scene.name.c_str(), faces, reuse_label.c_str(),
+            r.proxy.used ? std::to_string(r.proxy.faces).c_str() : "-", wall, cpu,
+            cpu / base_cpu[k], r.inflate.newton_iterations, r.fit.newton_iterations,
+            r.inflate.factorizations, r.fit.factorizations, r.seconds.inflate, r.seconds.fit,
+            peak_mb, r.certify.shape.mean_edge_change, r.certify.fit_error.mean,
             r.certified() ? "yes" : "no");
         std::fflush(stdout);
       }

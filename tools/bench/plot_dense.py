@@ -1,6 +1,7 @@
 """Plots, from dense_benchmark's CSV, CPU time, Newton steps and peak memory against the
-garment's faces, on log-log axes, one curve per scene and factor-reuse threshold, with a
-line of slope 1 (linear cost) through each curve's coarsest run for comparison."""
+garment's faces, on log-log axes, one curve per scene and variant (factor-reuse threshold,
+proxy size), with a line of slope 1 (linear cost) through the coarsest run of each curve
+that runs as the preset does, for comparison."""
 
 import csv
 import sys
@@ -15,9 +16,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 def main(csv_path, png_path):
     by_scene = defaultdict(list)
     for row in csv.DictReader(open(csv_path)):
+        parts = [row["scene"]]
         reuse = row.get("reuse_gflops", "preset")
-        name = row["scene"] if reuse == "preset" else f'{row["scene"]}, reuse {reuse} GFLOP'
-        by_scene[name].append(row)
+        proxy = row.get("proxy_faces", "preset")
+        if reuse != "preset":
+            parts.append(f"reuse {reuse} GFLOP")
+        if proxy != "preset":
+            parts.append("direct" if proxy == "0" else f"proxy {proxy}")
+        by_scene[", ".join(parts)].append(row)
     panels = [("cpu_seconds", "CPU time (s)"),
               (None, "Newton steps (inflate + fit)"),
               ("peak_memory_mb", "peak resident memory (MB)")]
@@ -31,7 +37,8 @@ def main(csv_path, png_path):
             else:
                 values = [float(r[column]) for r in rows]
             line, = ax.plot(faces, values, "o-", label=scene)
-            if column == "cpu_seconds" and "reuse 0 " not in scene + " ":
+            preset_like = "reuse 0 " not in scene + " " and "direct" not in scene
+            if column == "cpu_seconds" and preset_like:
                 ax.plot(faces, [values[0] * f / faces[0] for f in faces], "--",
                         color=line.get_color(), alpha=0.5, label=f"{scene}, linear")
         ax.set_xscale("log")

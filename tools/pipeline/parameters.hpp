@@ -18,6 +18,9 @@ struct PipelineParameters {
   double voxel_size = 0.01;  ///< signed-distance grid spacing
   /// Skeleton shrink: the first pullback tried (SkeletonShrinkOptions::pullback).
   double skeleton_pullback = SkeletonShrinkOptions{}.pullback;
+  /// Coarse to fine: a garment of more than twice this many faces is solved first on a
+  /// proxy decimated to about this many, whose paths it then follows; 0: off.
+  int proxy_faces = 5000;
 };
 
 /// Speed against accuracy presets.

@@ -78,6 +78,27 @@ nlohmann::json to_json(const OutfitReport& r) {
            "hidden-avatar-faces.txt"}};
 }
 
+namespace {
+
+nlohmann::json guide_json(const GuideFollowed& followed) {
+  return {{"points", followed.points},
+          {"reached", followed.points_reached},
+          {"cut_by_ccd", followed.cut_motions}};
+}
+
+nlohmann::json proxy_json(const ProxyReport& proxy) {
+  if (!proxy.used) return {{"used", false}, {"reason", proxy.reason}};
+  return {{"used", true},
+          {"faces", proxy.faces},
+          {"clearance", proxy.clearance},
+          {"inflate_newton_iterations", proxy.inflate_newton_iterations},
+          {"fit_newton_iterations", proxy.fit_newton_iterations},
+          {"inflate_path", guide_json(proxy.inflate_path)},
+          {"fit_path", guide_json(proxy.fit_path)}};
+}
+
+}  // namespace
+
 nlohmann::json to_json(const RetargetReport& r) {
   using nlohmann::json;
   json report = {
@@ -88,6 +109,7 @@ nlohmann::json to_json(const RetargetReport& r) {
        {{"read", r.seconds.read},
         {"normalize", r.seconds.normalize},
         {"shrink", r.seconds.shrink},
+        {"proxy", r.seconds.proxy},
         {"inflate", r.seconds.inflate},
         {"fit", r.seconds.fit},
         {"write", r.seconds.write},
@@ -100,6 +122,7 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"full_depth_grid", r.shrink.full_depth_grid},
         {"pullback", r.shrink.pullback},
         {"thinned", r.shrink.thinned}}},
+      {"proxy", proxy_json(r.proxy)},
       {"inflate",
        {{"al_rounds", r.inflate.al_rounds},
         {"resets", r.inflate.resets},

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/solver/guide_path.hpp"
 #include "tools/pipeline/ease.hpp"
 #include "tools/pipeline/inferred_inputs.hpp"
 #include "tools/pipeline/metrics.hpp"
@@ -19,8 +20,8 @@ namespace gr {
 
 /// Wall time of each stage, seconds.
 struct StageSeconds {
-  double read = 0, normalize = 0, shrink = 0, inflate = 0, fit = 0, write = 0, certify = 0,
-         total = 0;
+  double read = 0, normalize = 0, shrink = 0, proxy = 0, inflate = 0, fit = 0, write = 0,
+         certify = 0, total = 0;
 };
 
 /// The skin written with a glTF garment (weights transferred from the avatar's skin).
@@ -101,6 +102,21 @@ struct InflateReport {
   std::string status;
   /// Mean fraction of garment faces whose self-contact was left out as fold free per step.
   double fold_free = 0.0;
+};
+
+/// Coarse to fine: the decimated proxy solved first, and how far the garment followed it.
+struct ProxyReport {
+  bool used = false;
+  std::string reason;  ///< why the garment was solved without one (empty when used)
+  int faces = 0;       ///< the proxy's
+  /// How much further out than the garment the proxy fits (CoarseProxy::clearance,
+  /// normalized units).
+  double clearance = 0.0;
+  int inflate_newton_iterations = 0;
+  int fit_newton_iterations = 0;
+  double seconds = 0.0;
+  /// How far the garment followed the proxy's paths (filled by the fine solves).
+  GuideFollowed inflate_path, fit_path;
 };
 
 /// Fit: the garment settled onto the body, and what the solver modelled.
@@ -190,6 +206,7 @@ struct RetargetReport {
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
   ShrinkReport shrink;
+  ProxyReport proxy;
   InflateReport inflate;
   FitReport fit;
   SkinTransferReport skin;  ///< written with a GLB garment

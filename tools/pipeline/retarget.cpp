@@ -21,6 +21,7 @@
 #include "tools/pipeline/stages/inflate_stage.hpp"
 #include "tools/pipeline/stages/normalize_stage.hpp"
 #include "tools/pipeline/stages/outfit_stage.hpp"
+#include "tools/pipeline/stages/proxy_stage.hpp"
 #include "tools/pipeline/stages/read_stage.hpp"
 #include "tools/pipeline/stages/shrink_stage.hpp"
 #include "tools/pipeline/stages/solver_scene.hpp"
@@ -159,8 +160,8 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
                                parameters);
     record_modelled(report, solver);
   };
-  const auto inflate = [&]() {
-    InflateOutput inflated = run_inflate({solver}, {parameters, in.frames}, progress);
+  const auto inflate = [&](const InflationGuide& guide) {
+    InflateOutput inflated = run_inflate({solver}, {parameters, in.frames, guide}, progress);
     add_inflation_attempt(report.inflate, inflated.report);
     record_modelled(report, solver);
     report.seconds.inflate += inflated.seconds;
@@ -168,7 +169,16 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
     return inflated.inflation;
   };
   solver_scene();
-  InflationResult inflation = inflate();
+  const bool ease_fit = report.ease.fit == FitMode::kEase;
+  const SourceEase* source_ease = ease_fit ? &in.inferred.source_ease : nullptr;
+  ProxyOutput proxy =
+      run_proxy({solver, source_ease},
+                {parameters, report.parameters.proxy_faces, report.ease.max_offset}, progress);
+  report.proxy = proxy.report;
+  report.seconds.proxy = proxy.report.seconds;
+  // A retry below solves the garment directly: the proxy's paths lead where it failed.
+  InflationResult inflation = inflate(proxy.paths ? proxy.paths->inflation() : InflationGuide());
+  report.proxy.inflate_path = inflation.guide;
   if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure &&
       in.shrink_options.mode == ShrinkMode::kSkeleton) {
     const double pullback = kStalledPullbackFactor * shrink.shrunk.pullback;
@@ -184,7 +194,7 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
     }
     record_shrink(report, shrink, in.inferred);
     solver_scene();
-    inflation = inflate();
+    inflation = inflate({});
   }
   if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure) {
     // Layers and pieces pressed together by the growing avatar (a trouser cuff inside a
@@ -197,7 +207,7 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
                     dhat, kStalledBarrierFactor * dhat));
     dhat *= kStalledBarrierFactor;
     solver_scene();
-    inflation = inflate();
+    inflation = inflate({});
   }
   if (!inflation.succeeded()) {
     solved.failure = {Outcome::kSolverFailure,
@@ -206,9 +216,12 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
                           "widen the barrier with --dhat"};
     return solved;
   }
-  const bool ease_fit = report.ease.fit == FitMode::kEase;
-  solved.fit = run_fit({solver, inflation.garment, ease_fit ? &in.inferred.source_ease : nullptr},
-                       {parameters, report.ease.max_offset}, progress);
+  const bool guided = proxy.paths && inflation.guide.points > 0;
+  solved.fit = run_fit({solver, inflation.garment, source_ease},
+                       {parameters, report.ease.max_offset,
+                        guided ? proxy.paths->fit(inflation.garment) : GuidePath()},
+                       progress);
+  report.proxy.fit_path = solved.fit.fit.guide;
   if (solved.fit.ease_targets) report.ease.targets = std::move(*solved.fit.ease_targets);
   report.fit = solved.fit.report;
   record_modelled(report, solver);

@@ -41,10 +41,13 @@ FitOutput run_fit(const FitInput& input, const FitOptions& options, Progress& pr
   const StageTimer timer;
   const NewtonCallback on_newton = newton_progress(progress, "fit");
   const RetargetParameters& parameters = options.parameters;
-  out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton);
+  out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton, options.guide);
+  if (out.fit.guide.points > 0)
+    progress.log("fit", "followed the proxy to {} of its {} points ({} motions cut by CCD)",
+                 out.fit.guide.points_reached, out.fit.guide.points, out.fit.guide.cut_motions);
   if (out.fit.solve.status != SolverStatus::kNonFiniteEnergy &&
       widen_scope_if_left(solver, out.fit.garment, parameters.dhat, "fit", progress))
-    out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton);
+    out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton, options.guide);
   const FitResult& fit = out.fit;
   FitReport& report = out.report;
   report.newton_iterations = fit.solve.iterations;

@@ -23,6 +23,7 @@ struct FitInput {
 struct FitOptions {
   RetargetParameters parameters;
   double max_ease_offset = 0.0;  ///< the largest ease target the distance band holds
+  GuidePath guide;               ///< where a coarse proxy's fit says the garment goes; empty: none
 };
 
 struct FitOutput {

@@ -23,12 +23,18 @@ InflateOutput run_inflate(const InflateInput& input, const InflateOptions& optio
   };
   const NewtonCallback on_newton = newton_progress(progress, "inflate");
   InflateOutput out;
-  out.inflation = inflate_avatar(solver.scene, options.parameters, on_round, on_newton);
+  out.inflation =
+      inflate_avatar(solver.scene, options.parameters, on_round, on_newton, options.guide);
   if (out.inflation.succeeded() &&
       widen_scope_if_left(solver, out.inflation.garment, options.parameters.dhat, "inflation",
                           progress))
-    out.inflation = inflate_avatar(solver.scene, options.parameters, on_round, on_newton);
+    out.inflation =
+        inflate_avatar(solver.scene, options.parameters, on_round, on_newton, options.guide);
   const InflationResult& inflation = out.inflation;
+  if (inflation.guide.points > 0)
+    progress.log("inflate", "followed the proxy to {} of its {} points ({} motions cut by CCD)",
+                 inflation.guide.points_reached, inflation.guide.points,
+                 inflation.guide.cut_motions);
   out.report.al_rounds = inflation.rounds;
   out.report.resets = inflation.resets;
   out.report.newton_iterations = inflation.newton_iterations;

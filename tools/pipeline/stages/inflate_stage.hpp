@@ -24,6 +24,9 @@ struct InflateInput {
 struct InflateOptions {
   RetargetParameters parameters;
   FrameWriter write_frame;  ///< empty: no frames
+  /// Where a coarse proxy's inflation says the garment goes (coarse to fine); empty path:
+  /// none.
+  InflationGuide guide;
 };
 
 struct InflateOutput {

@@ -1,0 +1,78 @@
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+#include "core/solver/guide_path.hpp"
+
+using namespace gr;
+
+namespace {
+
+/// One coordinate that must stay below a wall: max_step keeps a tenth of the gap, as a
+/// CCD that leaves a separation does, and counts the points it was shown.
+class WallProblem : public Problem {
+ public:
+  explicit WallProblem(double wall) : wall_(wall) {}
+  int dof_count() const override { return 1; }
+  double value(const Eigen::VectorXd& x) override { return x[0] < wall_ ? 0.0 : INFINITY; }
+  void gradient(const Eigen::VectorXd&, Eigen::VectorXd& g) override { g.setZero(1); }
+  void hessian(const Eigen::VectorXd&, Eigen::SparseMatrix<double>& H) override { H.resize(1, 1); }
+  double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override {
+    if (x[0] + dx[0] < wall_) return 1.0;
+    return 0.9 * (wall_ - x[0]) / dx[0];
+  }
+  void solution_changed(const Eigen::VectorXd& x) override { changed_at.push_back(x[0]); }
+  std::vector<double> changed_at;
+
+ private:
+  double wall_;
+};
+
+GuidePath path_through(const std::vector<double>& points) {
+  return {static_cast<int>(points.size()), [points](int index, Eigen::VectorXd& point) {
+            point = Eigen::VectorXd::Constant(1, points[static_cast<std::size_t>(index)]);
+          }};
+}
+
+}  // namespace
+
+TEST_CASE("follow_guide: a clear path is followed to its end", "[solver][guide]") {
+  WallProblem problem(10.0);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  const GuideFollowed followed = follow_guide(problem, x, path_through({1.0, 3.0, 2.0, 5.0}));
+  CHECK(followed.points == 4);
+  CHECK(followed.points_reached == 4);
+  CHECK(followed.cut_motions == 0);
+  CHECK(followed.complete());
+  CHECK(x[0] == 5.0);
+  // The problem hears of the end point before a solve starts from it.
+  REQUIRE_FALSE(problem.changed_at.empty());
+  CHECK(problem.changed_at.back() == 5.0);
+}
+
+TEST_CASE("follow_guide: a path through a wall stops short of it", "[solver][guide]") {
+  WallProblem problem(1.0);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  // The third motion is cut to 0.9 of the gap (0.8 → 0.98, a fraction 0.15 of it); the
+  // next one, towards 2, can only move 0.9 of the remaining 0.02 (a fraction 0.018 of it),
+  // which ends the following.
+  const GuideFollowed followed = follow_guide(problem, x, path_through({0.5, 0.8, 2.0, 2.0, 0.0}));
+  CAPTURE(x[0]);
+  CHECK(followed.points == 5);
+  CHECK(followed.points_reached == 2);
+  CHECK(followed.cut_motions == 2);
+  CHECK_FALSE(followed.complete());
+  CHECK(x[0] < 1.0);
+  CHECK(x[0] == Approx(0.8 + 0.9 * 0.2 + 0.9 * (1.0 - 0.98)).epsilon(1e-12));
+  // The last point (back at 0) is never taken: the following ended at the wall.
+  CHECK(x[0] > 0.9);
+}
+
+TEST_CASE("follow_guide: an empty path leaves the point", "[solver][guide]") {
+  WallProblem problem(1.0);
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(1, 0.25);
+  const GuideFollowed followed = follow_guide(problem, x, GuidePath());
+  CHECK(followed.points == 0);
+  CHECK(followed.complete());
+  CHECK(x[0] == 0.25);
+}
