@@ -35,7 +35,9 @@ FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3
   FitResult result;
   if (guide.size > 0) {
     result.guide = follow_guide(problem, x, guide);
-    if (parameters.guided_fit_max_iterations > 0)
+    // Only a garment that followed the guide to its end is near the end of its fit; one
+    // the guide left early fits as it would have without it.
+    if (parameters.guided_fit_max_iterations > 0 && result.guide.reached_end)
       options.max_iterations =
           std::min(options.max_iterations, parameters.guided_fit_max_iterations);
   }

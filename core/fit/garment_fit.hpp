@@ -41,8 +41,9 @@ double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const Matrix
 /// @throw std::invalid_argument when scene.distance_field is null or the sample count is
 ///        not 1, 3 or 6; InputError as GarmentProblem's constructor.
 /// @param guide points in the fit's dofs (the garment's #Vg×3 positions row by row) that the
-///        garment passes through before the solve (follow_guide); the solve then stops after
-///        parameters.guided_fit_max_iterations steps when that is positive.
+///        garment passes through before the solve (follow_guide); when it followed them to
+///        the end, the solve stops after parameters.guided_fit_max_iterations steps (when
+///        positive).
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
                       const RetargetParameters& parameters,
                       const NewtonCallback& on_newton_step = {}, const GuidePath& guide = {});

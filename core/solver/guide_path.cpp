@@ -24,7 +24,10 @@ GuideFollowed follow_guide(Problem& problem, Eigen::VectorXd& x, const GuidePath
     } else {
       ++followed.cut_motions;
       if (alpha > 0.0) x += alpha * motion;
-      if (alpha < kSmallestFollowedFraction) break;
+      if (alpha < kSmallestFollowedFraction) {
+        followed.reached_end = false;
+        break;
+      }
     }
   }
   problem.solution_changed(x);

@@ -22,6 +22,9 @@ struct GuideFollowed {
   int points = 0;          ///< points of the path
   int points_reached = 0;  ///< reached exactly (the motion to them was not cut)
   int cut_motions = 0;     ///< motions CCD cut short
+  /// The following went on to the last point (its motions possibly cut short), rather than
+  /// ending at a motion cut below a tenth.
+  bool reached_end = true;
   bool complete() const { return points_reached == points; }
 };
 

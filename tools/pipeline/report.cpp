@@ -83,7 +83,8 @@ namespace {
 nlohmann::json guide_json(const GuideFollowed& followed) {
   return {{"points", followed.points},
           {"reached", followed.points_reached},
-          {"cut_by_ccd", followed.cut_motions}};
+          {"cut_by_ccd", followed.cut_motions},
+          {"reached_end", followed.reached_end}};
 }
 
 nlohmann::json proxy_json(const ProxyReport& proxy) {

@@ -44,6 +44,7 @@ TEST_CASE("follow_guide: a clear path is followed to its end", "[solver][guide]"
   CHECK(followed.points_reached == 4);
   CHECK(followed.cut_motions == 0);
   CHECK(followed.complete());
+  CHECK(followed.reached_end);
   CHECK(x[0] == 5.0);
   // The problem hears of the end point before a solve starts from it.
   REQUIRE_FALSE(problem.changed_at.empty());
@@ -62,10 +63,23 @@ TEST_CASE("follow_guide: a path through a wall stops short of it", "[solver][gui
   CHECK(followed.points_reached == 2);
   CHECK(followed.cut_motions == 2);
   CHECK_FALSE(followed.complete());
+  CHECK_FALSE(followed.reached_end);
   CHECK(x[0] < 1.0);
   CHECK(x[0] == Approx(0.8 + 0.9 * 0.2 + 0.9 * (1.0 - 0.98)).epsilon(1e-12));
   // The last point (back at 0) is never taken: the following ended at the wall.
   CHECK(x[0] > 0.9);
+}
+
+TEST_CASE("follow_guide: motions cut by a little still reach the path's end", "[solver][guide]") {
+  WallProblem problem(1.0);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  // Towards 1.5 from 0: cut to 0.9 of the gap (0.9, a fraction 0.6); then back to 0.2.
+  const GuideFollowed followed = follow_guide(problem, x, path_through({1.5, 0.2}));
+  CHECK(followed.points_reached == 1);
+  CHECK(followed.cut_motions == 1);
+  CHECK_FALSE(followed.complete());
+  CHECK(followed.reached_end);
+  CHECK(x[0] == 0.2);
 }
 
 TEST_CASE("follow_guide: an empty path leaves the point", "[solver][guide]") {
