@@ -25,7 +25,7 @@ def main(csv_path, png_path):
             parts.append("direct" if proxy == "0" else f"proxy {proxy}")
         by_scene[", ".join(parts)].append(row)
     panels = [("cpu_seconds", "CPU time (s)"),
-              (None, "Newton steps (inflate + fit)"),
+              (None, "the garment's own Newton steps (inflate + fit)"),
               ("peak_memory_mb", "peak resident memory (MB)")]
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.6))
     for ax, (column, label) in zip(axes, panels):
