@@ -97,7 +97,7 @@ Vector3d barycentric(const Vector3d& p, const Vector3d& a, const Vector3d& b, co
   return Vector3d(1.0 - v - w, v, w);
 }
 
-Vector3d corner(const MatrixX3d& vertices, const MatrixX3i& faces, int f, int k) {
+Vector3d corner(const Eigen::Ref<const MatrixX3d>& vertices, const MatrixX3i& faces, int f, int k) {
   return vertices.row(faces(f, k)).transpose();
 }
 
@@ -140,7 +140,7 @@ std::optional<TriangleMesh> decimate(const TriangleMesh& garment, int target_fac
   return proxy;
 }
 
-/// Per vertex of `points_mesh`, the nearest vertex of `surface` among the corners of the
+/// Per row of `points`, the nearest vertex of `surface` among the corners of the
 /// surface face nearest it.
 std::vector<int> nearest_vertices(const MatrixX3d& points, const TriangleMesh& surface) {
   const std::vector<Triangle> triangles = triangles_of(surface);
@@ -210,12 +210,11 @@ SurfaceEmbedding::SurfaceEmbedding(const TriangleMesh& coarse, const MatrixX3d& 
 
 MatrixX3d SurfaceEmbedding::carry(const Eigen::Ref<const MatrixX3d>& coarse_vertices) const {
   MatrixX3d fine(static_cast<Eigen::Index>(placements_.size()), 3);
-  const MatrixX3d coarse = coarse_vertices;
   for (std::size_t v = 0; v < placements_.size(); ++v) {
     const Placement& placement = placements_[v];
-    const Vector3d a = corner(coarse, faces_, placement.face, 0);
-    const Vector3d b = corner(coarse, faces_, placement.face, 1);
-    const Vector3d c = corner(coarse, faces_, placement.face, 2);
+    const Vector3d a = corner(coarse_vertices, faces_, placement.face, 0);
+    const Vector3d b = corner(coarse_vertices, faces_, placement.face, 1);
+    const Vector3d c = corner(coarse_vertices, faces_, placement.face, 2);
     Vector3d x =
         placement.barycentric[0] * a + placement.barycentric[1] * b + placement.barycentric[2] * c;
     std::array<Vector3d, 3> frame;
