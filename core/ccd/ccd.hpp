@@ -24,4 +24,13 @@ struct CcdOptions {
 double max_step(const Candidates& swept_candidates, const Eigen::Ref<const MatrixX3d>& V0,
                 const Eigen::Ref<const MatrixX3d>& V1, const CcdOptions& options = {});
 
+/// Per vertex (row of V0), the smallest of max_step's per-pair bounds over the candidate
+/// pairs it belongs to, 1 where none cuts the motion: which parts of a motion meet
+/// something. The minimum over all vertices is max_step's result.
+/// @throw std::invalid_argument as max_step.
+std::vector<double> vertex_steps(const Candidates& swept_candidates,
+                                 const Eigen::Ref<const MatrixX3d>& V0,
+                                 const Eigen::Ref<const MatrixX3d>& V1,
+                                 const CcdOptions& options = {});
+
 }  // namespace gr

@@ -58,6 +58,31 @@ double ContactEnergy::update_swept_candidates(const Eigen::Ref<const MatrixX3d>&
   return max_step(candidates_, start, end, ccd);
 }
 
+std::vector<double> ContactEnergy::update_swept_vertex_steps(const Eigen::Ref<const MatrixX3d>& V0,
+                                                             double t0,
+                                                             const Eigen::Ref<const MatrixX3d>& V1,
+                                                             double t1, const CcdOptions& ccd,
+                                                             bool self_only) {
+  const MatrixX3d start = stacked(V0, t0);
+  const MatrixX3d& end = stacked(V1, t1);
+  candidates_ = finder_.find_swept(start, end, barrier_.dhat());
+  if (!self_only) {
+    std::vector<double> steps = vertex_steps(candidates_, start, end, ccd);
+    steps.resize(static_cast<std::size_t>(V0.rows()));
+    return steps;
+  }
+  // The avatar's rows follow the garment's.
+  const auto garment = [n = static_cast<int>(V0.rows())](int v) { return v < n; };
+  Candidates self;
+  for (const PointTriangleCandidate& c : candidates_.point_triangle)
+    if (garment(c.point) && garment(c.triangle[0])) self.point_triangle.push_back(c);
+  for (const EdgeEdgeCandidate& c : candidates_.edge_edge)
+    if (garment(c.edge_a[0]) && garment(c.edge_b[0])) self.edge_edge.push_back(c);
+  std::vector<double> steps = vertex_steps(self, start, end, ccd);
+  steps.resize(static_cast<std::size_t>(V0.rows()));
+  return steps;
+}
+
 double ContactEnergy::value(const Eigen::Ref<const MatrixX3d>& V, double t) const {
   return barrier_.value(candidates_, stacked(V, t));
 }

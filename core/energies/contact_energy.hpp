@@ -55,6 +55,12 @@ class ContactEnergy : public EnergyTerm {
   double update_swept_candidates(const Eigen::Ref<const MatrixX3d>& V0, double t0,
                                  const Eigen::Ref<const MatrixX3d>& V1, double t1,
                                  const CcdOptions& ccd);
+  /// As update_swept_candidates, but per garment vertex (ccd.hpp, vertex_steps): the
+  /// smallest CCD bound over the pairs it belongs to (garment–garment pairs only with
+  /// `self_only`), 1 where none cuts its motion.
+  std::vector<double> update_swept_vertex_steps(const Eigen::Ref<const MatrixX3d>& V0, double t0,
+                                                const Eigen::Ref<const MatrixX3d>& V1, double t1,
+                                                const CcdOptions& ccd, bool self_only = false);
 
   const char* name() const override { return "contact"; }
   /// Over the current candidates.

@@ -7,6 +7,7 @@
 
 #include "core/candidates/candidates.hpp"
 #include "core/mesh/boundary_loops.hpp"
+#include "core/mesh/graded_values.hpp"
 #include "core/solver/sparse_pattern.hpp"
 
 namespace gr {
@@ -32,6 +33,11 @@ const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage sta
 /// their barrier would be unbounded or all but. Any pair further apart is.
 constexpr double kTouchingGap = 1e-3;
 
+/// hold_back: rounds of per-vertex CCD, and the share of a vertex's CCD bound it keeps in
+/// each (less than all of it, since the fade moves its neighbours differently).
+constexpr int kHoldBackRounds = 6;
+constexpr double kHeldFraction = 0.5;
+
 ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters& parameters) {
   ContactMesh mesh = ContactMesh::build(scene.garment, scene.avatar, parameters.self_contact,
                                         scene.avatar_faces_used);
@@ -55,7 +61,7 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
   if (scene.skeletons) {
     const SkeletonMotion& s = *scene.skeletons;
     loop_bones_ = assign_loop_bones(scene.garment.vertices, boundary_loops(scene.garment.faces),
-                                    s.source_joints, s.target_joints, s.bones, s.skirt);
+                                    s.source_joints, s.target_joints, s.bones, s.skirt_vertices);
     position_ =
         &add_term<PositionEnergy>(parameters.w_pos, scene.garment.vertices, loop_bones_, layout_);
     if (stage == Stage::kFit && parameters.w_fit_stretch > 0.0)
@@ -202,6 +208,31 @@ double GarmentProblem::max_step(const Eigen::VectorXd& x, const Eigen::VectorXd&
   const Eigen::VectorXd end = x + dx;
   return contact_->update_swept_candidates(layout_.garment(x), layout_.t(x), layout_.garment(end),
                                            layout_.t(end), parameters_.ccd);
+}
+
+void GarmentProblem::hold_back(const Eigen::VectorXd& x, Eigen::VectorXd& dx, double fade_length) {
+  const auto start = layout_.garment(x);
+  const MatrixX3d motion = layout_.garment(dx);
+  const double dt = layout_.t_free ? dx[layout_.t_index()] : 0.0;
+  const double t0 = layout_.t(x);
+  const double t1 = t0 + dt;
+  MatrixX3d held = motion;
+  std::vector<double> scale(static_cast<std::size_t>(motion.rows()), 1.0);
+  for (int round = 0; round < kHoldBackRounds; ++round) {
+    const std::vector<double> steps = contact_->update_swept_vertex_steps(
+        start, t0, start + held, t1, parameters_.ccd, layout_.t_free);
+    bool cut = false;
+    for (std::size_t v = 0; v < steps.size(); ++v)
+      if (steps[v] < 1.0) {
+        scale[v] *= kHeldFraction * steps[v];
+        cut = true;
+      }
+    if (!cut) break;
+    grade_down(scale, contact_->mesh().garment_edges, start, fade_length);
+    for (Eigen::Index v = 0; v < motion.rows(); ++v)
+      held.row(v) = scale[static_cast<std::size_t>(v)] * motion.row(v);
+  }
+  dx = layout_.pack(dt, held);
 }
 
 double GarmentProblem::step_length(const Eigen::VectorXd& dx) const {

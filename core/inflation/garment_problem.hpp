@@ -29,7 +29,9 @@ struct SkeletonMotion {
   MatrixX3d source_joints;  ///< #J×3, the frame of the garment (t = 0)
   MatrixX3d target_joints;  ///< #J×3, the frame of the avatar (t = 1)
   MatrixX2i bones;          ///< #B×2
-  bool skirt = false;       ///< loops use a virtual bone between the legs
+  /// Per garment vertex, whether it belongs to a skirt: a boundary loop of a skirt's takes
+  /// a virtual bone between the legs. Empty: no garment is a skirt.
+  std::vector<char> skirt_vertices;
 };
 
 /// What the solver needs of a scene, all in normalized scene units.
@@ -123,6 +125,10 @@ class GarmentProblem : public Problem {
   void hessian_of(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& hessian, bool project_psd);
   void solution_changed(const Eigen::VectorXd& x) override;
   double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override;
+  /// Per garment vertex, by the CCD bounds of the pairs it belongs to; in the inflation by
+  /// its garment–garment pairs only (the avatar moves with t there: a garment vertex held
+  /// back would still be met). t moves in full.
+  void hold_back(const Eigen::VectorXd& x, Eigen::VectorXd& dx, double fade_length) override;
   /// The largest vertex motion of dx: garment vertices and, through t, avatar vertices.
   double step_length(const Eigen::VectorXd& dx) const override;
 

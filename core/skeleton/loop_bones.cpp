@@ -67,10 +67,15 @@ std::vector<LoopBone> assign_loop_bones(const Eigen::Ref<const MatrixX3d>& garme
                                         const std::vector<std::vector<int>>& loops,
                                         const Eigen::Ref<const MatrixX3d>& source_joints,
                                         const Eigen::Ref<const MatrixX3d>& target_joints,
-                                        const Eigen::Ref<const MatrixX2i>& bones, bool skirt) {
+                                        const Eigen::Ref<const MatrixX2i>& bones,
+                                        const std::vector<char>& skirt_vertices) {
   std::vector<LoopBone> result;
+  const auto is_skirt = [&](const std::vector<int>& loop) {
+    return !skirt_vertices.empty() && skirt_vertices[static_cast<std::size_t>(loop.front())];
+  };
   MovingBone virtual_bone;
-  if (skirt) {
+  if (std::any_of(loops.begin(), loops.end(),
+                  [&](const auto& loop) { return loop.size() >= 3 && is_skirt(loop); })) {
     const LegJoints legs =
         find_leg_joints(bones, static_cast<int>(source_joints.rows()), "source skeleton");
     const auto midpoint = [](const Eigen::Ref<const MatrixX3d>& joints, const int pair[2]) {
@@ -90,7 +95,7 @@ std::vector<LoopBone> assign_loop_bones(const Eigen::Ref<const MatrixX3d>& garme
       normal += p.cross(q);
     }
     centre /= static_cast<double>(loop.size());
-    if (skirt) {
+    if (is_skirt(loop)) {
       result.push_back({loop, virtual_bone, -1});
       continue;
     }

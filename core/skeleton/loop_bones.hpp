@@ -42,17 +42,20 @@ LegJoints find_leg_joints(const Eigen::Ref<const MatrixX2i>& bones, int joint_co
 
 /// Chooses the bone for each boundary loop of the garment, at t = 0 (source skeleton and
 /// initial garment, same frame). A loop's centre is the mean of its vertices and its normal
-/// Newell's normal. Without `skirt`: the bone closest to the centre (segment distance) among
-/// those whose direction is within 60 degrees of the normal (either sign); a loop with no
-/// such bone, or with a zero normal, gets none and is left out. With `skirt`: every loop
-/// takes the virtual bone from the midpoint of the hips to the midpoint of the knees (see
-/// find_leg_joints), which runs down between the legs.
+/// Newell's normal. A loop of a skirt (its first vertex marked in `skirt_vertices`) takes
+/// the virtual bone from the midpoint of the hips to the midpoint of the knees (see
+/// find_leg_joints), which runs down between the legs. Any other loop takes the bone
+/// closest to its centre (segment distance) among those whose direction is within 60
+/// degrees of its normal (either sign); a loop with no such bone, or with a zero normal,
+/// gets none and is left out.
 /// @param garment #Vg×3; source_joints, target_joints #J×3 (normalized scene units).
-/// @throw InputError from find_leg_joints when `skirt` and no legs are found.
+/// @param skirt_vertices per garment vertex, 1 for a skirt's; empty: no skirt.
+/// @throw InputError from find_leg_joints when a loop is a skirt's and no legs are found.
 std::vector<LoopBone> assign_loop_bones(const Eigen::Ref<const MatrixX3d>& garment,
                                         const std::vector<std::vector<int>>& loops,
                                         const Eigen::Ref<const MatrixX3d>& source_joints,
                                         const Eigen::Ref<const MatrixX3d>& target_joints,
-                                        const Eigen::Ref<const MatrixX2i>& bones, bool skirt);
+                                        const Eigen::Ref<const MatrixX2i>& bones,
+                                        const std::vector<char>& skirt_vertices = {});
 
 }  // namespace gr

@@ -16,11 +16,25 @@ GuideFollowed follow_guide(Problem& problem, Eigen::VectorXd& x, const GuidePath
   Eigen::VectorXd point;
   for (int index = 0; index < path.size; ++index) {
     path.point(index, point);
-    const Eigen::VectorXd motion = point - x;
-    const double alpha = std::min(1.0, problem.max_step(x, motion));
+    Eigen::VectorXd motion = point - x;
+    double alpha = std::min(1.0, problem.max_step(x, motion));
+    bool held = false;
+    if (alpha < 1.0 && path.fade_length > 0.0) {
+      const Eigen::VectorXd whole = motion;
+      problem.hold_back(x, motion, path.fade_length);
+      held = motion != whole;
+      if (held) {
+        ++followed.held_motions;
+        alpha = std::min(1.0, problem.max_step(x, motion));
+      }
+    }
     if (alpha >= 1.0) {
-      x = point;
-      ++followed.points_reached;
+      if (held) {
+        x += motion;
+      } else {
+        x = point;
+        ++followed.points_reached;
+      }
     } else {
       ++followed.cut_motions;
       if (alpha > 0.0) x += alpha * motion;

@@ -26,6 +26,12 @@ class Problem {
   /// Largest alpha in [0, 1] such that the motion x → x + alpha dx is safe (for contact:
   /// collision free by CCD). Trial points of the line search stay within that bound.
   virtual double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) { return 1.0; }
+  /// Scales a motion dx down part by part where it meets something, so that more of it is
+  /// safe than max_step's single fraction would let through: the parts that meet something
+  /// are held back, the scaling fading out over `fade_length` (step_length's unit) around
+  /// them, and the rest moves in full. max_step still bounds the motion that results.
+  /// Default: dx as it is.
+  virtual void hold_back(const Eigen::VectorXd& x, Eigen::VectorXd& dx, double fade_length) {}
   /// Whether a trial point may be accepted (besides decreasing the objective).
   virtual bool is_valid(const Eigen::VectorXd& x) { return true; }
   /// Whether x already serves the purpose of the solve, so that it may end short of the

@@ -29,7 +29,8 @@ std::string option_name(std::string key) {
 }
 
 /// An outfit's "garments": an array of garment paths, or of objects giving each garment's
-/// "garment" and its own "garment_mesh", "no_fit", "source_skeleton" and "source_body".
+/// "garment" and its own "garment_mesh", "no_fit", "source_skeleton" and "source_body", and
+/// "skirt": true for a skirt.
 template <typename AddInput, typename Fail>
 void add_outfit(const nlohmann::json& garments, const AddInput& add_input, BatchJob& job,
                 const Fail& fail) {
@@ -46,13 +47,21 @@ void add_outfit(const nlohmann::json& garments, const AddInput& add_input, Batch
         add_input(key, value, "garments." + key);
       else if (key == "garment_mesh" && value.is_string())
         meshes.push_back(value);
+      else if (key == "skirt" && value.is_boolean())
+        continue;
       else
         throw fail(
             fmt::format("\"garments.{}\" is not a garment's own: give garment, "
-                        "garment_mesh, no_fit, source_skeleton or source_body",
+                        "garment_mesh, no_fit, source_skeleton, source_body or skirt",
                         key));
     }
     if (!item.contains("garment")) throw fail("each of \"garments\" needs its \"garment\"");
+    // A skirt is named by its file, resolved as the garment input just added.
+    if (item.value("skirt", false)) {
+      const auto garment = std::find_if(job.inputs.rbegin(), job.inputs.rend(),
+                                        [](const auto& input) { return input.first == "garment"; });
+      add_keyed(job.options, "skirt-layer", garment->second);
+    }
   }
   // A garment's own file given for some garments only could not say whose it is.
   for (const char* key : {"garment_mesh", "no_fit", "source_skeleton", "source_body"}) {

@@ -24,13 +24,13 @@ struct Garment {
   std::string label;
   gr::GarmentPaths paths;
   std::string garment_mesh;
+  bool skirt = false;  ///< its loops follow a virtual bone between the legs
 };
 
 struct OutfitScene {
   std::string name;
   std::vector<Garment> garments;  ///< the order given (not necessarily inside to outside)
   gr::ScenePaths target;          ///< avatar, target skeleton, skin weights, avatar meshes
-  bool skirt = false;
 };
 
 std::string shared(const std::string& relative) {
@@ -42,7 +42,8 @@ Garment research_garment(const std::string& name) {
   return {name,
           {shared(dir + "garment.obj"), "", shared(dir + "no-fit.txt"),
            shared(dir + "skeleton.obj"), shared(dir + "source_body.obj")},
-          ""};
+          "",
+          name == "skirt"};
 }
 
 std::vector<OutfitScene> scenes() {
@@ -55,7 +56,7 @@ std::vector<OutfitScene> scenes() {
   };
   const std::string outfit = shared("real/male-outfit.glb");
   const auto real = [&](const std::string& label, const std::string& mesh) {
-    return Garment{label, {outfit, mesh, "", "", outfit}, mesh};
+    return Garment{label, {outfit, mesh, "", "", outfit}, mesh, false};
   };
   gr::ScenePaths female;
   female.avatar = shared("real/female-full-body.glb");
@@ -63,17 +64,14 @@ std::vector<OutfitScene> scenes() {
   return {
       {"skirt_puffer_foxgirl",
        {research_garment("skirt"), research_garment("puffer")},
-       research("foxgirl", ""),
-       true},
+       research("foxgirl", "")},
       {"skirt_puffer_goblin",
        {research_garment("skirt"), research_garment("puffer")},
-       research("goblin", "skin.txt"),
-       true},
+       research("goblin", "skin.txt")},
       {"male_outfit_female",
        {real("shirt", "Wolf3D_Outfit_Top"), real("trousers", "Wolf3D_Outfit_Bottom"),
         real("footwear", "Wolf3D_Outfit_Footwear")},
-       female,
-       false},
+       female},
   };
 }
 
@@ -95,7 +93,8 @@ gr::RetargetOptions options_for(const OutfitScene& scene, const std::vector<Garm
     if (more.source_body == first.source_body) more.source_body.clear();
     options.inputs.more_garments.push_back(more);
   }
-  options.skirt = scene.skirt;
+  for (const Garment& garment : garments)
+    if (garment.skirt) options.skirt_layers.push_back(garment.paths.garment);
   options.quality = quality;
   options.threads = threads;
   options.quiet = true;

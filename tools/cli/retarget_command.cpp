@@ -73,7 +73,11 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
       ->check(CLI::Range(0.0, 180.0))
       ->capture_default_str();
   cmd->add_flag("--skirt", options->skirt,
-                "Garment is a skirt: add a virtual bone between the legs");
+                "Garment is a skirt (in an outfit: every garment is): its boundary loops "
+                "follow a virtual bone between the legs");
+  cmd->add_option("--skirt-layer", options->skirt_layers,
+                  "Outfit: this garment is a skirt, by its name (glTF mesh, else file stem) or "
+                  "file; repeat for each");
   cmd->add_option("--shrink", *shrink_mode,
                   "How to shrink the avatar: levelset (erode along its signed distance) or "
                   "skeleton (collapse onto the source skeleton's bones); default: skeleton when "

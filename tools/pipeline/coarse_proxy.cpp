@@ -258,6 +258,7 @@ std::optional<CoarseProxy> make_coarse_proxy(const GarmentScene& fine, int targe
   proxy.fine_vertex = nearest_vertices(decimated->vertices, fine.garment);
   proxy.embedding = SurfaceEmbedding(*decimated, fine.garment.vertices);
   proxy.clearance = proxy.embedding.max_offset() + kChordDepth * median_edge_length(fine.garment);
+  proxy.edge_length = median_edge_length(*decimated);
   GarmentScene& scene = proxy.scene;
   scene = fine;
   scene.garment = std::move(*decimated);

@@ -49,6 +49,8 @@ struct CoarseProxy {
   /// distance from it at rest, plus the depth by which a garment edge across a bent proxy
   /// edge cuts inside it.
   double clearance = 0.0;
+  /// The proxy's median edge length (normalized units): the finest detail its paths show.
+  double edge_length = 0.0;
 };
 
 /// The proxy of `fine` (normalized units), or why there is none (`why_not` set): the

@@ -189,7 +189,7 @@ TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
 }
 
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
-                                bool list_given, const TriangleMesh* source_body, bool skirt,
+                                bool list_given, const TriangleMesh* source_body,
                                 const std::string& out_dir, const InferenceOptions& options,
                                 InferenceReport& report) {
   const TriangleMesh& garment = normalized.garment;
@@ -207,7 +207,7 @@ std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& norma
   report.no_fit_options = options.no_fit;
   report.no_fit = infer_no_fit(garment, source_body,
                                normalized.source_skeleton ? &*normalized.source_skeleton : nullptr,
-                               skirt && normalized.source_skeleton, options.no_fit);
+                               skirt_vertices(scene), options.no_fit);
   report.no_fit.snug_offset /= normalized.normalization.garment_to_scene.scale;
   report.no_fit_faces = count_free(report.no_fit.vertices);
 

@@ -84,10 +84,10 @@ bool no_fit_given(const ScenePaths& paths);
 /// see read_source_body) and written to `out_dir`/no-fit.txt as 0-based garment OBJ vertex
 /// ids, recorded in `report`.
 /// @throw InputError when the root joint is not a joint of the skeletons; OutputError when
-///        the list cannot be written; InputError from find_leg_joints for a skirt whose
-///        skeleton has no legs.
+///        the list cannot be written; InputError from find_leg_joints for a skirt (a layer's
+///        GarmentLayer::skirt) whose skeleton has no legs.
 std::vector<int> no_fit_for_run(const Scene& scene, const NormalizedScene& normalized,
-                                bool list_given, const TriangleMesh* source_body, bool skirt,
+                                bool list_given, const TriangleMesh* source_body,
                                 const std::string& out_dir, const InferenceOptions& options,
                                 InferenceReport& report);
 

@@ -152,8 +152,8 @@ int count_set(const std::vector<char>& flags) {
 }  // namespace
 
 NoFitInference infer_no_fit(const TriangleMesh& garment, const TriangleMesh* source_body,
-                            const Skeleton* source_skeleton, bool skirt,
-                            const NoFitOptions& options) {
+                            const Skeleton* source_skeleton,
+                            const std::vector<char>& skirt_vertices, const NoFitOptions& options) {
   if (!(options.snug_percentile >= 0.0 && options.snug_percentile <= 100.0) ||
       !(options.body_distance_edges >= 0.0) || !(options.min_region_share >= 0.0) ||
       !std::isfinite(options.hip_offset) || !std::isfinite(options.end_margin))
@@ -175,8 +175,12 @@ NoFitInference infer_no_fit(const TriangleMesh& garment, const TriangleMesh* sou
     add(loose_from_body(garment, *source_body, vertex_neighbours(garment), options,
                         inference.snug_offset),
         inference.from_body, "source body distance");
-  if (skirt && source_skeleton)
-    add(below_hips(garment, *source_skeleton, options), inference.from_hips, "skirt below hips");
+  if (source_skeleton &&
+      std::find(skirt_vertices.begin(), skirt_vertices.end(), 1) != skirt_vertices.end()) {
+    std::vector<char> rule = below_hips(garment, *source_skeleton, options);
+    for (std::size_t v = 0; v < n; ++v) rule[v] = rule[v] && skirt_vertices[v];
+    add(rule, inference.from_hips, "skirt below hips");
+  }
   if (!source_body && source_skeleton && options.end_margin >= 0.0)
     add(beyond_end_joints(garment, *source_skeleton, options), inference.from_end_joints,
         "beyond end joints");

@@ -22,7 +22,7 @@ struct NoFitOptions {
   /// the garment's vertices; fitted regions that reach no boundary loop, enclosed by free
   /// ones, hang free with them.
   double min_region_share = 0.01;
-  /// Skirt rule (with `skirt`): free below the plane across the legs this many thigh
+  /// Skirt rule (a skirt's vertices): free below the plane across the legs this many thigh
   /// lengths (hip to knee) above the hip joints.
   double hip_offset = 0.05;
   /// End joint rule: free beyond an end joint (the last joint of a limb, or the neck, see
@@ -55,12 +55,14 @@ struct NoFitInference {
 /// @param source_body the body the garment was made on, same frame, or nullptr.
 /// @param source_skeleton the garment's skeleton, same frame, or nullptr (no skirt or end
 ///        joint rule then).
-/// @param skirt apply the skirt rule (needs the skeleton).
+/// @param skirt_vertices per garment vertex, 1 for a skirt's: the skirt rule applies to
+///        those (needs the skeleton); empty: to none.
 /// @throw std::invalid_argument when an option is out of range (percentile outside
 ///        [0, 100], a negative edge count or share, a root joint out of range); InputError from
-///        find_leg_joints when `skirt` and the skeleton has no legs.
+///        find_leg_joints when a vertex is a skirt's and the skeleton has no legs.
 NoFitInference infer_no_fit(const TriangleMesh& garment, const TriangleMesh* source_body,
-                            const Skeleton* source_skeleton, bool skirt,
+                            const Skeleton* source_skeleton,
+                            const std::vector<char>& skirt_vertices,
                             const NoFitOptions& options = {});
 
 /// Intersection over union of two no-fit lists, on the faces they leave free (all three

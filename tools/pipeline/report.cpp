@@ -84,6 +84,7 @@ nlohmann::json guide_json(const GuideFollowed& followed) {
   return {{"points", followed.points},
           {"reached", followed.points_reached},
           {"cut_by_ccd", followed.cut_motions},
+          {"held_back", followed.held_motions},
           {"reached_end", followed.reached_end}};
 }
 

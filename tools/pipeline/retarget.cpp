@@ -135,7 +135,6 @@ struct SolveInput {
   const ShrinkOptions& shrink_options;
   const DistanceField& distance_field;  ///< the shrink's grid
   const InferOutput& inferred;
-  bool skirt = false;
   FrameWriter frames;  ///< empty: no frames
 };
 
@@ -156,7 +155,7 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
   SolverScene& solver = solved.solver;
   const auto solver_scene = [&]() {
     solver = make_solver_scene({in.scene, in.normalized, shrink.shrunk.vertices, in.distance_field,
-                                in.inherited, shrink.pierced_faces, in.skirt},
+                                in.inherited, shrink.pierced_faces},
                                parameters);
     record_modelled(report, solver);
   };
@@ -216,7 +215,9 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
                           "widen the barrier with --dhat"};
     return solved;
   }
-  const bool guided = proxy.paths && inflation.guide.points > 0;
+  // A garment whose inflation left the proxy's path starts its fit away from where the
+  // proxy's did: held back wherever the two differ, the fit's path would only crumple it.
+  const bool guided = proxy.paths && inflation.guide.points > 0 && inflation.guide.reached_end;
   solved.fit = run_fit({solver, inflation.garment, source_ease},
                        {parameters, report.ease.max_offset,
                         guided ? proxy.paths->fit(inflation.garment) : GuidePath()},
@@ -273,15 +274,15 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Scene& scene = read.scene;
   result.report_path = folder.final_path("report.json");
   const std::vector<int> given_order = resolve_layer_order(scene, options.layer_order);
+  mark_skirts(scene, options.skirt, options.skirt_layers);
   const NormalizeOutput normalized_scene = run_normalize(
       {scene, options.inputs}, {std::min(parameters.dhat, parameters.fit_support())}, progress);
   const NormalizedScene& normalized = normalized_scene.normalized;
   double& min_separation = report.parameters.solver.ccd.min_separation;
   min_separation = std::max(min_separation, normalized_scene.ccd_min_separation);
-  const InferOutput inferred = run_infer({scene, normalized, options.inputs, read.shrink_mode},
-                                         {options.inference, options.skirt, options.fit_mode,
-                                          out.string(), report.parameters.voxel_size},
-                                         progress);
+  const InferOutput inferred = run_infer(
+      {scene, normalized, options.inputs, read.shrink_mode},
+      {options.inference, options.fit_mode, out.string(), report.parameters.voxel_size}, progress);
   scene.no_fit = inferred.no_fit;
   record_inputs(report, read, normalized_scene, inferred);
   if (report.inferred.no_fit_inferred) {
@@ -316,7 +317,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const FrameWriter frames =
       options.frames ? frame_writer(out / "frames", scene, normalized) : FrameWriter();
   Solved solved = solve_garment({scene, normalized, normalized_scene.inherited, shrink_input,
-                                 shrink_options, distance_field, inferred, options.skirt, frames},
+                                 shrink_options, distance_field, inferred, frames},
                                 shrink, report, progress);
   if (solved.failure) return finish(solved.failure->first, solved.failure->second);
   const SolverScene& solver = solved.solver;

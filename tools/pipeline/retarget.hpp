@@ -20,7 +20,9 @@ namespace gr {
 struct RetargetOptions {
   ScenePaths inputs;
   std::string out_dir;
-  bool skirt = false;  ///< add a virtual bone between the legs for L_pos
+  bool skirt = false;  ///< every garment is a skirt (GarmentLayer::skirt)
+  /// An outfit: the garments that are skirts, by name (GarmentLayer::name) or file.
+  std::vector<std::string> skirt_layers;
   std::optional<ShrinkMode>
       shrink_mode;  ///< unset: skeleton when skeletons are given, else levelset
   Quality quality = Quality::kBalanced;

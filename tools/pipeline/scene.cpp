@@ -322,6 +322,20 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
 
 }  // namespace
 
+std::vector<char> skirt_vertices(const Scene& scene) {
+  std::vector<char> skirt;
+  for (const GarmentLayer& layer : scene.layers) {
+    if (!layer.skirt) continue;
+    if (skirt.empty())
+      skirt.assign(static_cast<std::size_t>(scene.garment.mesh.vertices.rows()), 0);
+    for (int p = 0; p < layer.position_count; ++p) {
+      const int v = scene.garment.obj_to_sim[static_cast<std::size_t>(layer.first_position + p)];
+      if (v >= 0) skirt[static_cast<std::size_t>(v)] = 1;
+    }
+  }
+  return skirt;
+}
+
 std::vector<int> layer_of_document_faces(const Scene& scene) {
   std::vector<int> layer(scene.garment_document.faces.size(), 0);
   for (std::size_t k = 0; k < scene.layers.size(); ++k) {

@@ -66,6 +66,9 @@ struct GarmentLayer {
   int position_count = 0;
   int first_face = 0;  ///< its first face in Scene::garment_document
   int face_count = 0;
+  /// A skirt: its boundary loops take a virtual bone between the legs, and its no-fit list
+  /// is inferred below the hips.
+  bool skirt = false;
 };
 
 /// A scene as read and checked, in the files' own units and frames.
@@ -97,6 +100,10 @@ struct Scene {
   /// its glTF skin, else the target skeleton with the skin weights file; unset without.
   std::optional<SkinBinding> avatar_skin;
 };
+
+/// Per simulation garment vertex, 1 where its layer is a skirt (GarmentLayer::skirt); empty
+/// when no layer is.
+std::vector<char> skirt_vertices(const Scene& scene);
 
 /// Per face of `document` (Scene::garment_document), the layer it belongs to.
 std::vector<int> layer_of_document_faces(const Scene& scene);

@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -206,4 +208,26 @@ TEST_CASE("max_step takes the minimum over the candidates", "[ccd]") {
   gr::CcdOptions bad;
   bad.min_separation_ratio = 1.0;
   CHECK_THROWS_AS(gr::max_step(c, V0, V1, bad), std::invalid_argument);
+}
+
+TEST_CASE("vertex_steps bounds each vertex by the pairs it belongs to", "[ccd]") {
+  gr::MatrixX3d V0(8, 3), V1;
+  V0 << 0.25, 0.25, 1.0, 0, 0, 0, 1, 0, 0, 0, 1, 0,  // point above a triangle
+      0, 0, 2, 1, 0, 2, 0.5, -0.5, 3, 0.5, 0.5, 3;   // two crossing edges, kept apart
+  V1 = V0;
+  V1(0, 2) = -1.0;  // reaches the triangle at 0.5
+  V1.row(6).z() = 2.8;
+  V1.row(7).z() = 2.8;
+  gr::Candidates c;
+  c.point_triangle.push_back({0, {1, 2, 3}});
+  c.edge_edge.push_back({{4, 5}, {6, 7}});
+  const std::vector<double> steps = gr::vertex_steps(c, V0, V1);
+  REQUIRE(steps.size() == 8);
+  const double whole = gr::max_step(c, V0, V1);
+  for (int v = 0; v < 4; ++v) CHECK(steps[static_cast<std::size_t>(v)] == whole);
+  for (int v = 4; v < 8; ++v) CHECK(steps[static_cast<std::size_t>(v)] == 1.0);
+  CHECK(*std::min_element(steps.begin(), steps.end()) == whole);
+  gr::CcdOptions bad;
+  bad.max_iterations = 0;
+  CHECK_THROWS_AS(gr::vertex_steps(c, V0, V1, bad), std::invalid_argument);
 }

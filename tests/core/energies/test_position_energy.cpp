@@ -128,24 +128,43 @@ TEST_CASE("loop bones: the closest bone within 60 degrees of the loop normal", "
   MatrixX2i bones(2, 2);
   bones << 0, 1, 2, 3;
   const auto loops = boundary_loops(cylinder.faces);
-  const auto assigned = assign_loop_bones(cylinder.vertices, loops, joints, joints, bones, false);
+  const auto assigned = assign_loop_bones(cylinder.vertices, loops, joints, joints, bones);
   REQUIRE(assigned.size() == 2);
   CHECK(assigned[0].bone_index == 0);
   CHECK(assigned[1].bone_index == 0);
 
+  // A skeleton with legs (hips at z = -0.1, knees at -0.6) for the skirt's virtual bone.
+  MatrixX3d skeleton = MatrixX3d::Zero(15, 3);
+  for (int j = 0; j < 15; ++j) skeleton.row(j) << 0.01 * j, 0.02 * j, 0.5 - 0.1 * j;
+  skeleton.row(9) << -0.2, 0, -0.1;
+  skeleton.row(12) << 0.2, 0, -0.1;
+  skeleton.row(10) << -0.2, 0, -0.6;
+  skeleton.row(13) << 0.2, 0, -0.6;
+
   SECTION("a skirt uses the virtual bone between the legs") {
-    MatrixX3d skeleton = MatrixX3d::Zero(15, 3);
-    for (int j = 0; j < 15; ++j) skeleton.row(j) << 0.01 * j, 0.02 * j, 0.5 - 0.1 * j;
-    skeleton.row(9) << -0.2, 0, -0.1;
-    skeleton.row(12) << 0.2, 0, -0.1;
-    skeleton.row(10) << -0.2, 0, -0.6;
-    skeleton.row(13) << 0.2, 0, -0.6;
+    const std::vector<char> all(static_cast<std::size_t>(cylinder.vertices.rows()), 1);
     const auto skirt = assign_loop_bones(cylinder.vertices, loops, skeleton, 2.0 * skeleton,
-                                         data_skeleton_bones(), true);
+                                         data_skeleton_bones(), all);
     REQUIRE(skirt.size() == 2);
     CHECK(skirt[0].bone_index == -1);
     CHECK((skirt[0].bone.source_a - Vector3d(0, 0, -0.1)).norm() < 1e-15);
     CHECK((skirt[0].bone.source_b - Vector3d(0, 0, -0.6)).norm() < 1e-15);
     CHECK((skirt[0].bone.target_b - Vector3d(0, 0, -1.2)).norm() < 1e-15);
+  }
+
+  SECTION("in an outfit only the skirt's loops take the virtual bone") {
+    // The cylinder's lower loop is a skirt's (as if it were another garment), the upper
+    // one a jacket's: the jacket's loop keeps its own bone.
+    std::vector<char> lower(static_cast<std::size_t>(cylinder.vertices.rows()), 0);
+    for (Eigen::Index v = 0; v < cylinder.vertices.rows(); ++v)
+      lower[static_cast<std::size_t>(v)] = cylinder.vertices(v, 2) < 0.5;
+    const auto mixed = assign_loop_bones(cylinder.vertices, loops, skeleton, 2.0 * skeleton,
+                                         data_skeleton_bones(), lower);
+    REQUIRE(mixed.size() == 2);
+    const bool first_is_lower = cylinder.vertices(loops[0].front(), 2) < 0.5;
+    const LoopBone& skirt_loop = first_is_lower ? mixed[0] : mixed[1];
+    const LoopBone& jacket_loop = first_is_lower ? mixed[1] : mixed[0];
+    CHECK(skirt_loop.bone_index == -1);
+    CHECK(jacket_loop.bone_index >= 0);
   }
 }

@@ -111,3 +111,50 @@ TEST_CASE("garment problem: step length counts the avatar's motion through t", "
   dx[4] = 0.2;
   CHECK(problem.step_length(dx) == Approx(0.2));
 }
+
+TEST_CASE("garment problem: the fit holds back only where a motion meets the avatar",
+          "[fit][ccd]") {
+  // A flat patch above a unit sphere, moved down by 0.2: its middle would pass into the
+  // sphere, its corners (1.13 from the axis) pass beside it.
+  GarmentScene scene;
+  scene.avatar = icosphere(3, 1.0);
+  scene.shrunk_avatar = 0.9 * scene.avatar.vertices;
+  const int cells = 16;
+  scene.garment = quad_grid(cells, cells, false, [&](int i, int j) {
+    return Vector3d(-0.8 + 1.6 * j / cells, -0.8 + 1.6 * i / cells, 1.1);
+  });
+  const test::SphereField field(Vector3d::Zero(), 1.0);
+  scene.distance_field = &field;
+  GarmentProblem problem(scene, RetargetParameters{}, GarmentProblem::Stage::kFit);
+  const Eigen::VectorXd x = problem.layout().pack(1.0, scene.garment.vertices);
+  Eigen::VectorXd dx = Eigen::VectorXd::Zero(x.size());
+  for (Eigen::Index v = 0; v < scene.garment.vertices.rows(); ++v)
+    dx[problem.layout().vertex_dof(static_cast<int>(v), 2)] = -0.2;
+  REQUIRE(problem.max_step(x, dx) < 1.0);
+
+  Eigen::VectorXd held = dx;
+  const double fade = 0.2;
+  problem.hold_back(x, held, fade);
+  CHECK(problem.max_step(x, held) == 1.0);  // what is left is safe in full
+  const int middle = cells / 2 * (cells + 1) + cells / 2;
+  const int corner = 0;
+  CHECK(held[problem.layout().vertex_dof(middle, 2)] > -0.1);   // stays above the sphere
+  CHECK(held[problem.layout().vertex_dof(corner, 2)] == -0.2);  // beyond the fade: in full
+  // Held back by a scale: nothing moves sideways or further than asked.
+  for (Eigen::Index k = 0; k < dx.size(); ++k) {
+    CHECK(held[k] * dx[k] >= 0.0);
+    CHECK(std::abs(held[k]) <= std::abs(dx[k]));
+  }
+
+  // In the inflation the avatar moves with t: only garment–garment pairs hold the garment
+  // back, so a motion that meets the avatar alone is left as it is.
+  GarmentScene inflating = scene;
+  inflating.shrunk_avatar = 0.5 * scene.avatar.vertices;
+  GarmentProblem inflation(inflating, RetargetParameters{}, GarmentProblem::Stage::kInflation);
+  const Eigen::VectorXd start = inflation.layout().pack(0.0, scene.garment.vertices);
+  Eigen::VectorXd motion = Eigen::VectorXd::Zero(start.size());
+  motion[0] = 1.0;
+  Eigen::VectorXd kept = motion;
+  inflation.hold_back(start, kept, fade);
+  CHECK(kept == motion);
+}

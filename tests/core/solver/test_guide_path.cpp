@@ -28,9 +28,10 @@ class WallProblem : public Problem {
   double wall_;
 };
 
-GuidePath path_through(const std::vector<double>& points) {
-  return {static_cast<int>(points.size()), [points](int index, Eigen::VectorXd& point) {
-            point = Eigen::VectorXd::Constant(1, points[static_cast<std::size_t>(index)]);
+/// A path through `points`, each point with that value in all of its `dofs` coordinates.
+GuidePath path_through(const std::vector<double>& points, int dofs = 1) {
+  return {static_cast<int>(points.size()), [points, dofs](int index, Eigen::VectorXd& point) {
+            point = Eigen::VectorXd::Constant(dofs, points[static_cast<std::size_t>(index)]);
           }};
 }
 
@@ -89,4 +90,52 @@ TEST_CASE("follow_guide: an empty path leaves the point", "[solver][guide]") {
   CHECK(followed.points == 0);
   CHECK(followed.complete());
   CHECK(x[0] == 0.25);
+}
+
+namespace {
+
+/// Two coordinates, the first below a wall and the second free: hold_back keeps the
+/// first's motion within 0.9 of its gap and lets the second move in full.
+class HalfWallProblem : public WallProblem {
+ public:
+  explicit HalfWallProblem(double wall) : WallProblem(wall), wall_(wall) {}
+  int dof_count() const override { return 2; }
+  void hold_back(const Eigen::VectorXd& x, Eigen::VectorXd& dx, double fade_length) override {
+    fade_lengths.push_back(fade_length);
+    if (x[0] + dx[0] >= wall_) dx[0] = 0.9 * (wall_ - x[0]);
+  }
+  std::vector<double> fade_lengths;
+
+ private:
+  double wall_;
+};
+
+}  // namespace
+
+TEST_CASE("follow_guide: a motion held back in part lets the rest follow to the end",
+          "[solver][guide]") {
+  HalfWallProblem problem(1.0);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
+  GuidePath path = path_through({0.5, 2.0, 3.0}, 2);
+  path.fade_length = 0.25;
+  const GuideFollowed followed = follow_guide(problem, x, path);
+  CHECK(followed.points_reached == 1);
+  CHECK(followed.held_motions == 2);
+  CHECK(followed.cut_motions == 0);
+  CHECK(followed.reached_end);
+  CHECK(x[1] == 3.0);  // the free part is where the path ends
+  CHECK(x[0] < 1.0);   // the held part never reaches the wall
+  CHECK(x[0] == Approx(0.5 + 0.9 * 0.5 + 0.9 * 0.05).epsilon(1e-12));
+  // Asked only for the motions CCD would cut.
+  CHECK(problem.fade_lengths == std::vector<double>{0.25, 0.25});
+
+  // Without a fade length the motion is cut as a whole, and the path is soon left.
+  HalfWallProblem whole(1.0);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2);
+  const GuideFollowed cut = follow_guide(whole, y, path_through({0.5, 2.0, 3.0}, 2));
+  CHECK(whole.fade_lengths.empty());
+  CHECK(cut.held_motions == 0);
+  CHECK(cut.cut_motions == 2);
+  CHECK_FALSE(cut.reached_end);
+  CHECK(y[1] < 1.0);
 }

@@ -155,6 +155,19 @@ TEST_CASE("read_manifest gives each garment object's own files as arrays in the 
   CHECK(jobs[0].inputs.size() == 10);
 }
 
+TEST_CASE("read_manifest names a garment object marked skirt in --skirt-layer",
+          "[batch][manifest][outfit]") {
+  const fs::path manifest =
+      write_manifest("outfit_skirt",
+                     "{\"id\": \"a\", \"avatar\": \"a.obj\", \"garments\": ["
+                     "{\"skirt\": true, \"garment\": \"skirt.obj\"}, {\"garment\": \"coat.obj\", "
+                     "\"skirt\": false}]}\n");
+  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest.string());
+  REQUIRE(jobs.size() == 1);
+  CHECK(jobs[0].options ==
+        nlohmann::json{{"skirt-layer", (manifest.parent_path() / "skirt.obj").string()}});
+}
+
 TEST_CASE("read_manifest refuses malformed garments with the manifest line",
           "[batch][manifest][outfit]") {
   const std::string good = "{\"id\": \"ok\", \"garment\": \"g.obj\", \"avatar\": \"a.obj\"}\n";

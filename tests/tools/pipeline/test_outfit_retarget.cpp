@@ -1,4 +1,5 @@
 // Outfits: several garments retargeted together as layers, certified as a whole.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -12,6 +13,9 @@
 #include "core/io/rig_files.hpp"
 #include "extremes_support.hpp"
 #include "outfit_meshes.hpp"
+#include "tools/pipeline/progress.hpp"
+#include "tools/pipeline/stages/outfit_stage.hpp"
+#include "tools/pipeline/stages/read_stage.hpp"
 
 namespace gr {
 namespace {
@@ -133,6 +137,35 @@ TEST_CASE("outfit: written as one GLB with a mesh per garment, or a GLB each whe
     for (const std::string& name : {"inner", "middle", "outer"})
       CHECK(std::filesystem::is_regular_file(scene.dir / "out" / (name + ".glb")));
   }
+}
+
+TEST_CASE("outfit: only the layers named skirts are skirts", "[pipeline][outfit]") {
+  const NestedSleeves sleeves =
+      test::write_nested_sleeves(test::fresh_temp_dir("outfit_skirt_layers"));
+  const RetargetOptions options = outfit_options(sleeves, {0, 1, 2});
+  Progress progress(true);
+  Scene scene = run_read({options.inputs}, {}, progress).scene;
+  REQUIRE(scene.layers.size() == 3);
+  CHECK(skirt_vertices(scene).empty());  // no skirt: nothing marked
+
+  mark_skirts(scene, false, {"middle"});
+  CHECK_FALSE(scene.layers[0].skirt);
+  CHECK(scene.layers[1].skirt);
+  CHECK_FALSE(scene.layers[2].skirt);
+  // Exactly the middle sleeve's vertices, in the welded garment's numbering.
+  const std::vector<char> skirt = skirt_vertices(scene);
+  REQUIRE(skirt.size() == static_cast<std::size_t>(scene.garment.mesh.vertices.rows()));
+  std::vector<char> expected(skirt.size(), 0);
+  const GarmentLayer& middle = scene.layers[1];
+  for (int p = 0; p < middle.position_count; ++p)
+    expected[static_cast<std::size_t>(
+        scene.garment.obj_to_sim[static_cast<std::size_t>(middle.first_position + p)])] = 1;
+  CHECK(skirt == expected);
+  CHECK(std::count(skirt.begin(), skirt.end(), 1) > 0);
+
+  mark_skirts(scene, true, {});  // --skirt alone: every garment
+  for (const GarmentLayer& layer : scene.layers) CHECK(layer.skirt);
+  CHECK_THROWS_AS(mark_skirts(scene, false, {"nowhere"}), InputError);
 }
 
 }  // namespace gr

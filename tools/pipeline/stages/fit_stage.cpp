@@ -42,9 +42,7 @@ FitOutput run_fit(const FitInput& input, const FitOptions& options, Progress& pr
   const NewtonCallback on_newton = newton_progress(progress, "fit");
   const RetargetParameters& parameters = options.parameters;
   out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton, options.guide);
-  if (out.fit.guide.points > 0)
-    progress.log("fit", "followed the proxy to {} of its {} points ({} motions cut by CCD)",
-                 out.fit.guide.points_reached, out.fit.guide.points, out.fit.guide.cut_motions);
+  if (out.fit.guide.points > 0) progress.log("fit", "{}", describe_following(out.fit.guide));
   if (out.fit.solve.status != SolverStatus::kNonFiniteEnergy &&
       widen_scope_if_left(solver, out.fit.garment, parameters.dhat, "fit", progress))
     out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton, options.guide);

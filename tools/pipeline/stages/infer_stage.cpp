@@ -61,7 +61,7 @@ InferOutput run_infer(const InferInput& input, const InferOptions& options, Prog
   if (source_body_given(input.paths))
     source_body = read_source_body(input.paths, input.scene, input.normalized);
   out.no_fit = no_fit_for_run(input.scene, input.normalized, no_fit_given(input.paths),
-                              source_body ? &*source_body : nullptr, options.skirt, options.out_dir,
+                              source_body ? &*source_body : nullptr, options.out_dir,
                               options.inference, out.inferred);
   out.source_ease = infer_ease(input, options, out.no_fit, source_body ? &*source_body : nullptr,
                                out.ease, progress);

@@ -21,7 +21,6 @@ struct InferInput {
 
 struct InferOptions {
   InferenceOptions inference;
-  bool skirt = false;
   std::optional<FitMode> fit_mode;  ///< unset: ease with a source body, else tight
   std::string out_dir;              ///< where an inferred no-fit list is written
   double voxel_size =

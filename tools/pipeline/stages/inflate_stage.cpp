@@ -32,9 +32,7 @@ InflateOutput run_inflate(const InflateInput& input, const InflateOptions& optio
         inflate_avatar(solver.scene, options.parameters, on_round, on_newton, options.guide);
   const InflationResult& inflation = out.inflation;
   if (inflation.guide.points > 0)
-    progress.log("inflate", "followed the proxy to {} of its {} points ({} motions cut by CCD)",
-                 inflation.guide.points_reached, inflation.guide.points,
-                 inflation.guide.cut_motions);
+    progress.log("inflate", "{}", describe_following(inflation.guide));
   out.report.al_rounds = inflation.rounds;
   out.report.resets = inflation.resets;
   out.report.newton_iterations = inflation.newton_iterations;

@@ -58,20 +58,34 @@ std::string write_avatar_without(const std::string& dir, const Scene& scene,
 
 }  // namespace
 
+namespace {
+
+/// The layer `name` names (GarmentLayer::name, its path as given or its file name).
+/// @throw InputError from `option` when none does.
+int find_layer(const Scene& scene, const std::string& name, const char* option) {
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const GarmentLayer& layer = scene.layers[k];
+    if (name == layer.name || name == layer.path ||
+        name == fs::path(layer.path).filename().string())
+      return static_cast<int>(k);
+  }
+  throw InputError("", 0, fmt::format("{}: no garment named \"{}\"", option, name));
+}
+
+}  // namespace
+
+void mark_skirts(Scene& scene, bool all, const std::vector<std::string>& names) {
+  for (GarmentLayer& layer : scene.layers) layer.skirt = all;
+  for (const std::string& name : names)
+    scene.layers[static_cast<std::size_t>(find_layer(scene, name, "--skirt-layer"))].skirt = true;
+}
+
 std::vector<int> resolve_layer_order(const Scene& scene, const std::vector<std::string>& names) {
   if (names.empty()) return {};
   const auto layer_count = static_cast<int>(scene.layers.size());
   std::vector<int> order;
   for (const std::string& name : names) {
-    int found = -1;
-    for (int k = 0; k < layer_count && found < 0; ++k) {
-      const GarmentLayer& layer = scene.layers[static_cast<std::size_t>(k)];
-      if (name == layer.name || name == layer.path ||
-          name == fs::path(layer.path).filename().string())
-        found = k;
-    }
-    if (found < 0)
-      throw InputError("", 0, fmt::format("--layer-order: no garment named \"{}\"", name));
+    const int found = find_layer(scene, name, "--layer-order");
     if (std::find(order.begin(), order.end(), found) != order.end())
       throw InputError("", 0, fmt::format("--layer-order: \"{}\" named twice", name));
     order.push_back(found);

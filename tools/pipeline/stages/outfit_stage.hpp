@@ -17,6 +17,11 @@ namespace gr {
 /// @throw InputError naming the unknown, repeated or missing garment.
 std::vector<int> resolve_layer_order(const Scene& scene, const std::vector<std::string>& names);
 
+/// Marks the skirts among the layers (GarmentLayer::skirt): every layer with `all`, else
+/// those named (as in resolve_layer_order).
+/// @throw InputError naming an unknown garment.
+void mark_skirts(Scene& scene, bool all, const std::vector<std::string>& names);
+
 struct OutfitInput {
   const Scene& scene;
   const NormalizedScene& normalized;

@@ -14,6 +14,11 @@ namespace {
 /// shorter than this. The garment's CCD still bounds every motion.
 constexpr double kGuideSpacing = 0.02;
 
+/// The garment holds back where the proxy's motions run it into itself (its folds, finer
+/// than the proxy's) or, in the fit, into the avatar, fading out over this many proxy edge
+/// lengths.
+constexpr double kFadeEdges = 4.0;
+
 /// The indices of `points` (dofs of `layout`) a garment follows: thinned to kGuideSpacing.
 std::vector<int> spaced_points(const std::vector<Eigen::VectorXd>& points,
                                const DofLayout& layout) {
@@ -43,6 +48,7 @@ InflationGuide ProxyPaths::inflation() const {
   const auto kept =
       std::make_shared<const std::vector<int>>(spaced_points(inflation_points, proxy_layout));
   guide.path.size = static_cast<int>(kept->size());
+  guide.path.fade_length = kFadeEdges * proxy_->edge_length;
   guide.path.point = [this, proxy_layout, fine_layout, kept](int index, Eigen::VectorXd& point) {
     const Eigen::VectorXd& x =
         inflation_points[static_cast<std::size_t>((*kept)[static_cast<std::size_t>(index)])];
@@ -60,6 +66,7 @@ GuidePath ProxyPaths::fit(const MatrixX3d& fine_start) const {
   const auto offset =
       std::make_shared<const MatrixX3d>(fine_start - proxy_->embedding.carry(inflated));
   path.size = static_cast<int>(kept->size());
+  path.fade_length = kFadeEdges * proxy_->edge_length;
   path.point = [this, proxy_layout, fine_layout, kept, offset](int index, Eigen::VectorXd& point) {
     const Eigen::VectorXd& x =
         fit_points[static_cast<std::size_t>((*kept)[static_cast<std::size_t>(index)])];
@@ -111,8 +118,13 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
     progress.control().check("proxy inflate");
     if (round.reset) paths.inflation_points.clear();
   };
+  // The proxy's barrier reaches as much further as the garment lies from it, so that the
+  // garment carried along its inflation keeps clear of the growing avatar too. (Further
+  // still, by the whole clearance, lengthens the proxy's paths and so the garment's.)
+  RetargetParameters inflation_parameters = parameters;
+  inflation_parameters.dhat += proxy->embedding.max_offset();
   const InflationResult inflation =
-      inflate_avatar(proxy->scene, parameters, on_round, record_inflation);
+      inflate_avatar(proxy->scene, inflation_parameters, on_round, record_inflation);
   report.inflate_newton_iterations = inflation.newton_iterations;
   if (!inflation.succeeded()) return not_used("the proxy's inflation failed: " + inflation.message);
   // The snap to t = 1 is the last point of the path.
@@ -133,9 +145,8 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
             .offsets;
   }
   // The proxy fits that much further out than the garment will, so that the garment carried
-  // with it stays clear of the avatar; the garment's own steps then close the gap. (A
-  // barrier that much wider in the inflation too slowed the proxy's steps more than the
-  // garment's own steps it saved.)
+  // with it stays clear of the avatar; the garment's own steps then close the gap. (The
+  // fit's barrier keeps its width: a wider one would hold the proxy off the offsets.)
   for (double& offset : fit_scene.fit_offsets) offset += clearance;
   const NewtonCallback fit_progress = newton_progress(progress, "proxy fit");
   const NewtonCallback record_fit = [&](const NewtonProgress& step) {

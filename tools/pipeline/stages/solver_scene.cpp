@@ -37,7 +37,7 @@ SolverScene make_solver_scene(const SolverSceneInput& input, const RetargetParam
   if (normalized.source_skeleton)
     scene.skeletons =
         SkeletonMotion{normalized.source_skeleton->joints, normalized.target_skeleton->joints,
-                       normalized.target_skeleton->bones, input.skirt};
+                       normalized.target_skeleton->bones, skirt_vertices(input.scene)};
   scene.no_fit = input.scene.no_fit;
   scene.distance_field = &input.distance_field;
   scene.garment_tangles = input.inherited.tangles;
@@ -75,6 +75,14 @@ bool widen_scope_if_left(SolverScene& solver, const MatrixX3d& garment, double d
       "the {} carried the garment beyond the modelled avatar faces; solved again with all {}",
       stage_name, solver.avatar_faces_modelled));
   return true;
+}
+
+std::string describe_following(const GuideFollowed& followed) {
+  return fmt::format(
+      "followed the proxy to {} of its {} points ({} motions held back in part, {} cut by "
+      "CCD{})",
+      followed.points_reached, followed.points, followed.held_motions, followed.cut_motions,
+      followed.reached_end ? "" : ", left early");
 }
 
 NewtonCallback newton_progress(const Progress& progress, const char* stage_name) {

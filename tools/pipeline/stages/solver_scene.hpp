@@ -1,9 +1,11 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/inflation/garment_problem.hpp"
 #include "core/inflation/retarget_parameters.hpp"
+#include "core/solver/guide_path.hpp"
 #include "tools/pipeline/inherited_crossings.hpp"
 #include "tools/pipeline/normalization.hpp"
 #include "tools/pipeline/progress.hpp"
@@ -28,7 +30,6 @@ struct SolverSceneInput {
   const DistanceField& distance_field;  ///< must outlive the SolverScene
   const InheritedCrossings& inherited;
   const std::vector<int>& pierced_faces;  ///< left out of the avatar contact
-  bool skirt = false;                     ///< a virtual bone between the legs for L_pos
 };
 
 /// The solver's scene. Vertices only pierced faces hold are not fitted: nothing keeps them
@@ -40,6 +41,9 @@ SolverScene make_solver_scene(const SolverSceneInput& input, const RetargetParam
 /// solves again (rare, so the price is fine). @return whether it widened.
 bool widen_scope_if_left(SolverScene& solver, const MatrixX3d& garment, double dhat,
                          const char* stage_name, Progress& progress);
+
+/// One line on how far a garment followed a proxy's path (a progress line).
+std::string describe_following(const GuideFollowed& followed);
 
 /// Newton progress lines for the solve of `stage_name`, the first steps then every tenth;
 /// each step checks the run's limits.
