@@ -150,7 +150,8 @@ int main(int argc, char** argv) {
 
   std::printf(
       "| scene | run | faces | result | wall s | CPU s | Newton (inflate/fit) | peak MB | "
-      "mean edge change | layer order (out of order: source / result) | hidden avatar "
+      "mean edge change | layer order (out of order: source / result; reordered from the "
+      "source) | hidden avatar "
       "faces |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> ratios;
   for (const OutfitScene& scene : scenes()) {
@@ -160,10 +161,12 @@ int main(int argc, char** argv) {
     const auto row = [&](const std::string& run, const Measured& m) {
       const gr::RetargetReport& r = m.result.report;
       const std::string order =
-          r.outfit ? fmt::format("{} ({}): {} / {}, {}", fmt::join(r.outfit->order, " < "),
-                                 r.outfit->order_from, r.outfit->source.out_of_order,
-                                 r.outfit->result.out_of_order,
-                                 r.outfit->order_kept ? "kept" : "NOT kept")
+          r.outfit ? fmt::format(
+                         "{} ({}): {} of {} / {} of {}; {}, {}", fmt::join(r.outfit->order, " < "),
+                         r.outfit->order_from, r.outfit->source.out_of_order,
+                         r.outfit->source.rays_meeting_layers, r.outfit->result.out_of_order,
+                         r.outfit->result.rays_meeting_layers, r.outfit->reordered_from_source,
+                         r.outfit->order_kept ? "kept" : "NOT kept")
                    : std::string("-");
       const std::string hidden =
           r.outfit ? fmt::format("{} of {}", r.outfit->hidden_faces, r.outfit->avatar_faces)

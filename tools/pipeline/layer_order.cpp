@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "shrink/level_set/triangle_tree.hpp"
 #include "tools/pipeline/surface_rays.hpp"
 
 namespace gr {
@@ -51,7 +52,7 @@ std::vector<LayerHit> first_layer_hits(const SurfaceRays& garments, const Surfac
     const int layer = face_layer[static_cast<std::size_t>(hit.face)];
     if (seen[static_cast<std::size_t>(layer)]) continue;
     seen[static_cast<std::size_t>(layer)] = 1;
-    out.push_back({layer, hit.distance});
+    out.push_back({layer, hit.distance, hit.face});
   }
   // Hits come by distance then face: equal distances are put in layer order.
   std::stable_sort(out.begin(), out.end(), [](const LayerHit& a, const LayerHit& b) {
@@ -60,7 +61,63 @@ std::vector<LayerHit> first_layer_hits(const SurfaceRays& garments, const Surfac
   return out;
 }
 
+/// The point of `to`'s face `face` at the barycentric coordinates that `point` has on the
+/// same face of `from`.
+Vector3d carry_point(const TriangleMesh& from, const TriangleMesh& to, int face,
+                     const Vector3d& point) {
+  const auto corner = [face](const TriangleMesh& mesh, int k) -> Vector3d {
+    return mesh.vertices.row(mesh.faces(face, k)).transpose();
+  };
+  const Vector3d a = corner(from, 0), e1 = corner(from, 1) - a, e2 = corner(from, 2) - a;
+  const Vector3d d = point - a;
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0)) return corner(to, 0);  // a sliver: any corner is on it
+  const double u = (d22 * e1.dot(d) - d12 * e2.dot(d)) / det;
+  const double v = (d11 * e2.dot(d) - d12 * e1.dot(d)) / det;
+  const Vector3d b = corner(to, 0);
+  return b + u * (corner(to, 1) - b) + v * (corner(to, 2) - b);
+}
+
 }  // namespace
+
+SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
+                                            const TriangleMesh& result, const TriangleMesh& source,
+                                            const TriangleMesh& source_body, double tolerance) {
+  if (result.faces != source.faces || result.vertices.rows() != source.vertices.rows())
+    throw std::invalid_argument(
+        "rays_reordered_from_source: result and source must be one surface");
+  if (source_body.faces.rows() == 0)
+    throw std::invalid_argument("rays_reordered_from_source: the source body has no face");
+  if (!(tolerance >= 0.0))
+    throw std::invalid_argument("rays_reordered_from_source: negative tolerance");
+  const TriangleTree body(source_body);
+  std::vector<char> reordered(measure.several.size(), 0);
+  tbb::parallel_for(std::size_t(0), measure.several.size(), [&](std::size_t r) {
+    const RayLayers& ray = measure.several[r];
+    std::vector<double> depth;
+    std::vector<Vector3d> on_source;
+    for (const LayerHit& hit : ray.first_hits) {
+      const Vector3d on_result = ray.origin + hit.distance * ray.direction;
+      on_source.push_back(carry_point(result, source, hit.face, on_result));
+      depth.push_back(std::sqrt(body.distance_sq(on_source.back())));
+    }
+    for (std::size_t i = 0; i < depth.size() && !reordered[r]; ++i)
+      for (std::size_t j = i + 1; j < depth.size(); ++j)
+        // Points that lay over one another on the source: apart by at most twice their
+        // difference in depth (within 60° of the body's normal).
+        if (ray.first_hits[i].distance < ray.first_hits[j].distance &&
+            depth[i] > depth[j] + tolerance &&
+            (on_source[i] - on_source[j]).norm() <= 2.0 * (depth[i] - depth[j])) {
+          reordered[r] = 1;
+          break;
+        }
+  });
+  SourceOrderCheck out;
+  out.rays_checked = static_cast<int>(measure.several.size());
+  out.reordered = static_cast<int>(std::count(reordered.begin(), reordered.end(), 1));
+  return out;
+}
 
 LayeredOutfit merge_layers(const std::vector<TriangleMesh>& garments) {
   Eigen::Index vertices = 0, faces = 0;

@@ -56,6 +56,7 @@ BodyRays rays_from_body_faces(const TriangleMesh& body, const BodyRayOptions& op
 struct LayerHit {
   int layer = -1;
   double distance = 0.0;  ///< from the ray's origin, the body's units
+  int face = -1;          ///< the face of the outfit's surface met
 };
 
 /// A ray that met two or more layers.
@@ -113,6 +114,27 @@ struct OutOfOrderRays {
 ///        max_examples.
 OutOfOrderRays rays_out_of_order(const LayerOrderMeasure& measure,
                                  const std::vector<int>& inside_to_outside, int max_examples = 5);
+
+/// Rays whose layers come the other way round than on the source.
+struct SourceOrderCheck {
+  int rays_checked = 0;  ///< rays meeting two or more layers
+  int reordered = 0;     ///< of those, the rays with two layers met against the source's order
+};
+
+/// Compares the order of each ray's layers with the order of the same garment points on the
+/// source. `measure` was taken on `result` (the outfit's surface where the rays were cast);
+/// `source` is that outfit at its source positions (the same faces) and `source_body` its
+/// body, both in one frame. A ray is reordered when, of two first hits, the one met first
+/// lay over the one met after it on the source: further from the source body by more than
+/// `tolerance`, and apart by at most twice that difference in depth (one over the other,
+/// within 60° of the body's normal). Points closer in depth (layers touching, or crossing
+/// as given) or side by side on the source have no order to keep. Local, so that a layer
+/// tucked under another where it was tucked on the source is not counted.
+/// @throw std::invalid_argument when the surfaces differ in shape, the body has no face or
+///        the tolerance is negative.
+SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
+                                            const TriangleMesh& result, const TriangleMesh& source,
+                                            const TriangleMesh& source_body, double tolerance);
 
 /// An inside-to-outside order from the votes `before` (n × n, as in LayerOrderMeasure):
 /// a is inside b when before(a, b) > before(b, a). A layer that meets no other (no vote

@@ -59,6 +59,7 @@ nlohmann::json to_json(const OutfitReport& r) {
           {"order_from", r.order_from},
           {"order_on_source", to_json(r.source)},
           {"order_on_result", to_json(r.result)},
+          {"reordered_from_source", r.reordered_from_source},
           {"order_kept", r.order_kept},
           {"layer_intersections", r.layer_intersections},
           {"inherited_layer_intersections", r.inherited_layer_intersections},
@@ -73,7 +74,10 @@ nlohmann::json to_json(const OutfitReport& r) {
           {"meaning",
            "order: the garments from inside to outside; rays from the body's bones outward "
            "meet them in that order, out_of_order counts the rays that meet an outer layer "
-           "first. hidden: avatar faces every garment covers (no ray from the face's normal "
+           "first. reordered_from_source: rays of the result whose first hits lay the other "
+           "way round from the source body, at the same garment points, by more than the "
+           "barrier width (-1: no source body); the order is kept when there is none. hidden: "
+           "avatar faces every garment covers (no ray from the face's normal "
            "cone escapes the outfit, and no opening lies within the margin), listed in "
            "hidden-avatar-faces.txt"}};
 }

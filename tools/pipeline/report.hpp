@@ -176,8 +176,12 @@ struct OutfitReport {
   std::string order_from;                 ///< "given" (--layer-order) or "measured"
   LayerOrderReport source;                ///< the input on its source
   LayerOrderReport result;                ///< the written outfit on the avatar
-  /// No ray meets an outer layer first on the result where none did on the source; else
-  /// no more such rays, in proportion, than on the source.
+  /// Rays of the result whose layers the same garment points met the other way round on the
+  /// source (rays_reordered_from_source); -1 when there is no source body to compare with.
+  int reordered_from_source = -1;
+  /// With a source body: no ray reordered from the source. Without: no ray meets an outer
+  /// layer first on the result where none did on the source, else no more such rays, in
+  /// proportion, than on the source.
   bool order_kept = false;
   std::size_t layer_intersections = 0;            ///< new garment–garment pairs (certificate)
   std::size_t inherited_layer_intersections = 0;  ///< inherited ones still crossing

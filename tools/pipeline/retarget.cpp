@@ -355,7 +355,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     OutfitOutput outfit = run_outfit(
         {scene, normalized, fit.garment, inferred.source_body ? &*inferred.source_body : nullptr,
          certificate, out.string(), options.out_dir},
-        {given_order, options.write_avatar, {}}, progress);
+        {given_order, options.write_avatar, parameters.dhat, {}}, progress);
     record_outfit(report, outfit.report, scene, written, recorded_paths, certified_output);
   }
   std::string summary = certify_summary(certificate, report, total.seconds());

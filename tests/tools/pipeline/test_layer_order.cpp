@@ -224,3 +224,106 @@ TEST_CASE("Layer order from votes: cycles, ties and layers that never meet", "[o
     CHECK_THROWS_AS(measure_layer_order(outfit, TriangleMesh{}, BodyRays{}), std::invalid_argument);
   }
 }
+
+TEST_CASE("Rays are compared with the source at the same garment points", "[outfit][layers]") {
+  // Source: a shirt (layer 0, radius 1.1) and a jacket (layer 1) around a body of radius 1,
+  // the jacket at radius 1.3 above z = 0 and tucked in, at radius 1.05, below.
+  const auto with_radius = [](TriangleMesh mesh, const auto& radius_at) {
+    for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
+      const double r = radius_at(mesh.vertices(v, 2));
+      mesh.vertices.row(v).head<2>() *= r / mesh.vertices.row(v).head<2>().norm();
+    }
+    return mesh;
+  };
+  const TriangleMesh sleeve = open_cylinder(1.0, -2.0, 2.0, 9, 40);
+  const auto shirt_radius = [](double) { return 1.1; };
+  const auto tucked_jacket = [](double z) { return z > 0.0 ? 1.3 : 1.05; };
+  const LayeredOutfit source =
+      merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, tucked_jacket)});
+  const TriangleMesh source_body = closed_cylinder(1.0, -3.0, 3.0, 13, 32);
+  const BodyRays rays = rays_from_skeleton(skeleton_of({{Vector3d(0, 0, -3), Vector3d(0, 0, 3)}}));
+  const auto widened = [](TriangleMesh mesh, double s) {
+    mesh.vertices.leftCols<2>() *= s;
+    return mesh;
+  };
+  const auto check_result = [&](const TriangleMesh& result, double tolerance) {
+    const LayerOrderMeasure measure =
+        measure_layer_order({result, source.face_layer, 2}, TriangleMesh{}, rays);
+    return rays_reordered_from_source(measure, result, source.surface, source_body, tolerance);
+  };
+
+  SECTION("the same outfit twice as wide keeps its order, tucked part included") {
+    const TriangleMesh result = widened(source.surface, 2.0);
+    const LayerOrderMeasure measure =
+        measure_layer_order({result, source.face_layer, 2}, TriangleMesh{}, rays);
+    // Three of the six sample heights lie below z = 0: the jacket is met first there.
+    CHECK(rays_out_of_order(measure, {0, 1}).out_of_order == 3 * 16);
+    const SourceOrderCheck check =
+        rays_reordered_from_source(measure, result, source.surface, source_body, 0.01);
+    CHECK(check.rays_checked == 6 * 16);
+    CHECK(check.reordered == 0);
+  }
+
+  SECTION("the jacket pulled out from under the shirt below the waist is reordered") {
+    const auto untucked = [](double z) { return z > 0.0 ? 1.3 : 1.2; };
+    const TriangleMesh result =
+        merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, untucked)}).surface;
+    const SourceOrderCheck check = check_result(result, 0.01);
+    CHECK(check.rays_checked == 6 * 16);
+    CHECK(check.reordered == 3 * 16);
+  }
+
+  SECTION("layers that touched on the source have no order, up to the tolerance") {
+    const auto touching = [](double z) { return z > 0.0 ? 1.3 : 1.1; };
+    const LayeredOutfit touching_source =
+        merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, touching)});
+    const auto inside_below = [](double z) { return z > 0.0 ? 1.3 : 1.05; };
+    const TriangleMesh result =
+        merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, inside_below)})
+            .surface;
+    const LayerOrderMeasure measure =
+        measure_layer_order({result, source.face_layer, 2}, TriangleMesh{}, rays);
+    CHECK(rays_reordered_from_source(measure, result, touching_source.surface, source_body, 0.01)
+              .reordered == 0);
+    // Apart by more than the tolerance (0.05 against 0) they count.
+    const auto apart = [](double z) { return z > 0.0 ? 1.3 : 1.15; };
+    const LayeredOutfit apart_source =
+        merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, apart)});
+    CHECK(rays_reordered_from_source(measure, result, apart_source.surface, source_body, 0.01)
+              .reordered == 3 * 16);
+  }
+
+  SECTION("points side by side on the source have no order") {
+    // On this source the jacket hangs 1 lower, at radius 1.2: the points the result's rays
+    // meet lie further out than the shirt's, but beside them, not over them.
+    const auto loose = [](double) { return 1.2; };
+    const LayeredOutfit lower_source =
+        merge_layers({with_radius(sleeve, shirt_radius),
+                      translated(with_radius(sleeve, loose), Vector3d(0, 0, -1))});
+    const SourceOrderCheck check = check_result(source.surface, 0.01);
+    REQUIRE(check.reordered == 0);
+    const LayerOrderMeasure measure =
+        measure_layer_order({source.surface, source.face_layer, 2}, TriangleMesh{}, rays);
+    CHECK(
+        rays_reordered_from_source(measure, source.surface, lower_source.surface, source_body, 0.01)
+            .reordered == 0);
+    const LayeredOutfit level_source =
+        merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, loose)});
+    CHECK(
+        rays_reordered_from_source(measure, source.surface, level_source.surface, source_body, 0.01)
+            .reordered == 3 * 16);
+  }
+
+  SECTION("bad arguments") {
+    const LayerOrderMeasure measure =
+        measure_layer_order({source.surface, source.face_layer, 2}, TriangleMesh{}, rays);
+    CHECK_THROWS_AS(rays_reordered_from_source(measure, source.surface, sleeve, source_body, 0.0),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(
+        rays_reordered_from_source(measure, source.surface, source.surface, TriangleMesh{}, 0.0),
+        std::invalid_argument);
+    CHECK_THROWS_AS(
+        rays_reordered_from_source(measure, source.surface, source.surface, source_body, -1.0),
+        std::invalid_argument);
+  }
+}

@@ -134,20 +134,35 @@ OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options,
     return r.rays_meeting_layers > 0 ? static_cast<double>(r.out_of_order) / r.rays_meeting_layers
                                      : 0.0;
   };
-  report.order_kept =
-      report.result.out_of_order == 0 ||
-      (report.source.out_of_order > 0 && share(report.result) <= share(report.source));
+  std::string reordered;
+  if (input.source_body && input.source_body->faces.rows() > 0) {
+    const SourceOrderCheck check =
+        rays_reordered_from_source(on_result, result_outfit.surface, normalized.garment,
+                                   *input.source_body, options.order_tolerance);
+    report.reordered_from_source = check.reordered;
+    report.order_kept = check.reordered == 0;
+    reordered =
+        fmt::format("; {} of them met the other way round than on the source", check.reordered);
+  } else {
+    report.order_kept =
+        report.result.out_of_order == 0 ||
+        (report.source.out_of_order > 0 && share(report.result) <= share(report.source));
+  }
   progress.log("layers",
                "inside to outside ({}): {}; on the source {} of {} rays meeting two layers out of "
-               "order, on the result {} of {}",
+               "order, on the result {} of {}{}",
                report.order_from, fmt::join(report.order, ", "), report.source.out_of_order,
                report.source.rays_meeting_layers, report.result.out_of_order,
-               report.result.rays_meeting_layers);
+               report.result.rays_meeting_layers, reordered);
   if (!report.order_kept)
     progress.warn(
-        fmt::format("the layer order is not kept: {} of {} rays from the body meet an "
-                    "outer garment first (report.json outfit)",
-                    report.result.out_of_order, report.result.rays_meeting_layers));
+        report.reordered_from_source > 0
+            ? fmt::format("the layer order is not kept: {} of {} rays from the body meet two "
+                          "garments the other way round than on the source (report.json outfit)",
+                          report.reordered_from_source, report.result.rays_meeting_layers)
+            : fmt::format("the layer order is not kept: {} of {} rays from the body meet an "
+                          "outer garment first (report.json outfit)",
+                          report.result.out_of_order, report.result.rays_meeting_layers));
 
   const ValidationResult& checked = input.certificate.validation.result;
   for (const GarmentPairFindings& pair : checked.garment_pairs) {

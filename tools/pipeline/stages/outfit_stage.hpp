@@ -35,6 +35,9 @@ struct OutfitInput {
 struct OutfitOptions {
   std::vector<int> given_order;  ///< inside to outside (resolve_layer_order); empty: measure
   bool write_avatar = false;     ///< also write the avatar without its hidden faces
+  /// Source distances closer than this have no order (rays_reordered_from_source),
+  /// normalized units.
+  double order_tolerance = 0.0;
   HiddenFaceOptions hidden;
 };
 
