@@ -85,7 +85,8 @@ InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair>
 }
 
 std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
-                                               const std::vector<FacePair>& pairs, int& pieces) {
+                                               const std::vector<FacePair>& pairs,
+                                               const std::vector<int>& face_layer, int& pieces) {
   pieces = 0;
   std::vector<Attachment> attachments;
   if (pairs.empty()) return attachments;
@@ -103,9 +104,12 @@ std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
     ++face_count[static_cast<std::size_t>(piece_of_face(static_cast<int>(f)))];
   // Each crossing piece follows the first larger piece it crosses (ties: the lower root).
   std::map<int, int> host_of;
+  const auto layer_of = [&](int f) {
+    return face_layer.empty() ? 0 : face_layer[static_cast<std::size_t>(f)];
+  };
   for (const FacePair& p : pairs) {
     int a = piece_of_face(p.first), b = piece_of_face(p.second);
-    if (a == b) continue;
+    if (a == b || layer_of(p.first) != layer_of(p.second)) continue;
     const auto size = [&](int piece) { return face_count[static_cast<std::size_t>(piece)]; };
     if (size(a) > size(b) || (size(a) == size(b) && a < b)) std::swap(a, b);
     host_of.emplace(a, b);

@@ -34,10 +34,14 @@ InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair>
 /// through a dress, a strap through a shirt, follow it: every vertex of the smaller piece
 /// of a crossing pair is attached to the triangle of the other piece whose centroid is
 /// nearest, keeping its offset from that centroid. Crossings within one piece attach
-/// nothing.
+/// nothing, nor do crossings between layers of an outfit: each garment moves on its own,
+/// and a whole skirt tied to the jacket whose hem crosses its waistband would be dragged
+/// wherever the jacket goes.
 /// @param pairs face rows of `garment`.
+/// @param face_layer per face of `garment`, its layer; empty: one layer.
 /// @param pieces set to the number of pieces attached.
 std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
-                                               const std::vector<FacePair>& pairs, int& pieces);
+                                               const std::vector<FacePair>& pairs,
+                                               const std::vector<int>& face_layer, int& pieces);
 
 }  // namespace gr

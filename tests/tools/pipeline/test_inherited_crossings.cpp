@@ -77,7 +77,7 @@ TEST_CASE("Inherited crossings: a piece through another is attached to it", "[in
   const SelfIntersections self = find_self_intersecting_face_pairs(mesh);
   int pieces = 0;
   const std::vector<Attachment> attachments =
-      attach_crossing_pieces(mesh, self.pairs.pairs, pieces);
+      attach_crossing_pieces(mesh, self.pairs.pairs, {}, pieces);
   CHECK(pieces == 1);
   // The strap (2 faces) follows the sheet (2 faces; ties go to the lower piece): either way
   // one piece's four vertices, each on a triangle of the other piece.
@@ -92,7 +92,13 @@ TEST_CASE("Inherited crossings: a piece through another is attached to it", "[in
     CHECK((mesh.vertices.row(a.vertex).transpose() - centroid - a.offset).norm() < 1e-12);
   }
   // Crossings within one piece attach nothing.
-  CHECK(attach_crossing_pieces(mesh, {}, pieces).empty());
+  CHECK(attach_crossing_pieces(mesh, {}, {}, pieces).empty());
+  // Nor do crossings between two layers of an outfit: the strap (faces 2 and 3) is a
+  // garment of its own.
+  CHECK(attach_crossing_pieces(mesh, self.pairs.pairs, {0, 0, 1, 1, 1}, pieces).empty());
+  CHECK(pieces == 0);
+  CHECK(attach_crossing_pieces(mesh, self.pairs.pairs, {1, 1, 1, 1, 1}, pieces).size() == 4);
+  CHECK(pieces == 1);
 }
 
 TEST_CASE("A strap through the bundled skirt follows it and adds no crossing", "[inherited][cli]") {

@@ -43,7 +43,8 @@ NormalizeOutput run_normalize(const NormalizeInput& input, const NormalizeOption
   inherited =
       tangles_of(normalized.garment, std::move(self.pairs.pairs), kTangleRings, split_sites);
   inherited.attachments =
-      attach_crossing_pieces(normalized.garment, inherited.pairs, report.inherited.attached_pieces);
+      attach_crossing_pieces(normalized.garment, inherited.pairs, layer_of_garment_faces(scene),
+                             report.inherited.attached_pieces);
   report.split_edges = scene.split_edges;
   report.split_copies = static_cast<int>(scene.garment_ties.size());
   InheritedReport& kept = report.inherited;
