@@ -39,4 +39,19 @@ std::vector<std::vector<int>> boundary_loops(const Eigen::Ref<const MatrixX3i>& 
   return loops;
 }
 
+std::vector<bool> faces_on_open_edges(const Eigen::Ref<const MatrixX3i>& faces) {
+  std::map<std::pair<int, int>, int> face_count;
+  const auto edge = [&](Eigen::Index f, int k) {
+    const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+    return std::pair{std::min(a, b), std::max(a, b)};
+  };
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) ++face_count[edge(f, k)];
+  std::vector<bool> open(static_cast<std::size_t>(faces.rows()), false);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (face_count[edge(f, k)] == 1) open[static_cast<std::size_t>(f)] = true;
+  return open;
+}
+
 }  // namespace gr

@@ -12,4 +12,8 @@ namespace gr {
 /// @param faces #F×3, 0-based.
 std::vector<std::vector<int>> boundary_loops(const Eigen::Ref<const MatrixX3i>& faces);
 
+/// Per face, whether one of its edges is open (has no second face): along a boundary, such
+/// as the cut of a body cut away under clothes.
+std::vector<bool> faces_on_open_edges(const Eigen::Ref<const MatrixX3i>& faces);
+
 }  // namespace gr

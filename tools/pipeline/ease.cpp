@@ -8,6 +8,7 @@
 
 #include "core/common/errors.hpp"
 #include "core/fit/garment_fit.hpp"
+#include "core/mesh/boundary_loops.hpp"
 #include "core/mesh/unique_edges.hpp"
 #include "core/mesh/vertex_neighbours.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
@@ -15,22 +16,6 @@
 namespace gr {
 
 namespace {
-
-/// Per face of `mesh`, whether one of its edges is open (has no second face).
-std::vector<bool> faces_on_open_edges(const TriangleMesh& mesh) {
-  std::map<std::pair<int, int>, int> face_count;
-  const auto edge = [&](Eigen::Index f, int k) {
-    const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-    return std::pair{std::min(a, b), std::max(a, b)};
-  };
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) ++face_count[edge(f, k)];
-  std::vector<bool> open(static_cast<std::size_t>(mesh.faces.rows()), false);
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (face_count[edge(f, k)] == 1) open[static_cast<std::size_t>(f)] = true;
-  return open;
-}
 
 double median_of(std::vector<double> values) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -52,7 +37,7 @@ FitMode parse_fit_mode(const std::string& name) {
 SourceEase measure_source_ease(const TriangleMesh& garment, const TriangleMesh& body) {
   if (body.faces.rows() == 0) throw std::invalid_argument("source body has no face");
   const TriangleTree tree(body);
-  const std::vector<bool> open = faces_on_open_edges(body);
+  const std::vector<bool> open = faces_on_open_edges(body.faces);
   const auto n = static_cast<std::size_t>(garment.vertices.rows());
   SourceEase ease;
   ease.distance.assign(n, 0.0);

@@ -142,4 +142,14 @@ std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
   return attachments;
 }
 
+std::vector<char> tangled_faces(const TriangleMesh& garment, const InheritedCrossings& crossings) {
+  std::vector<char> tangled(static_cast<std::size_t>(garment.faces.rows()), 0);
+  if (crossings.tangles.empty()) return tangled;
+  for (Eigen::Index f = 0; f < garment.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (crossings.tangles[static_cast<std::size_t>(garment.faces(f, k))] >= 0)
+        tangled[static_cast<std::size_t>(f)] = 1;
+  return tangled;
+}
+
 }  // namespace gr

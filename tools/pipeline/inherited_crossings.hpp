@@ -44,4 +44,7 @@ std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
                                                const std::vector<FacePair>& pairs,
                                                const std::vector<int>& face_layer, int& pieces);
 
+/// Per face of `garment`, whether a corner lies in one of `crossings`' tangles.
+std::vector<char> tangled_faces(const TriangleMesh& garment, const InheritedCrossings& crossings);
+
 }  // namespace gr

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/mesh/boundary_loops.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
 #include "tools/pipeline/surface_rays.hpp"
 
@@ -83,7 +84,8 @@ Vector3d carry_point(const TriangleMesh& from, const TriangleMesh& to, int face,
 
 SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
                                             const TriangleMesh& result, const TriangleMesh& source,
-                                            const TriangleMesh& source_body, double tolerance) {
+                                            const TriangleMesh& source_body, double tolerance,
+                                            const std::vector<char>& unordered_faces) {
   if (result.faces != source.faces || result.vertices.rows() != source.vertices.rows())
     throw std::invalid_argument(
         "rays_reordered_from_source: result and source must be one surface");
@@ -91,8 +93,14 @@ SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
     throw std::invalid_argument("rays_reordered_from_source: the source body has no face");
   if (!(tolerance >= 0.0))
     throw std::invalid_argument("rays_reordered_from_source: negative tolerance");
+  if (!unordered_faces.empty() &&
+      static_cast<Eigen::Index>(unordered_faces.size()) != result.faces.rows())
+    throw std::invalid_argument(
+        "rays_reordered_from_source: unordered_faces must hold one flag per face");
   const TriangleTree body(source_body);
-  std::vector<char> reordered(measure.several.size(), 0);
+  const std::vector<bool> cut = faces_on_open_edges(source_body.faces);
+  const double no_depth = std::numeric_limits<double>::quiet_NaN();
+  std::vector<char> reordered(measure.several.size(), 0), compared(measure.several.size(), 0);
   tbb::parallel_for(std::size_t(0), measure.several.size(), [&](std::size_t r) {
     const RayLayers& ray = measure.several[r];
     std::vector<double> depth;
@@ -100,8 +108,14 @@ SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
     for (const LayerHit& hit : ray.first_hits) {
       const Vector3d on_result = ray.origin + hit.distance * ray.direction;
       on_source.push_back(carry_point(result, source, hit.face, on_result));
-      depth.push_back(std::sqrt(body.distance_sq(on_source.back())));
+      int nearest = -1;
+      depth.push_back(std::sqrt(body.distance_sq(on_source.back(), &nearest)));
+      if ((!unordered_faces.empty() && unordered_faces[static_cast<std::size_t>(hit.face)]) ||
+          (nearest >= 0 && cut[static_cast<std::size_t>(nearest)]))
+        depth.back() = no_depth;  // compares false below
     }
+    compared[r] =
+        std::count_if(depth.begin(), depth.end(), [](double d) { return !std::isnan(d); }) >= 2;
     for (std::size_t i = 0; i < depth.size() && !reordered[r]; ++i)
       for (std::size_t j = i + 1; j < depth.size(); ++j)
         // Points that lay over one another on the source: apart by at most twice their
@@ -115,6 +129,7 @@ SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
   });
   SourceOrderCheck out;
   out.rays_checked = static_cast<int>(measure.several.size());
+  out.rays_compared = static_cast<int>(std::count(compared.begin(), compared.end(), 1));
   out.reordered = static_cast<int>(std::count(reordered.begin(), reordered.end(), 1));
   return out;
 }

@@ -117,8 +117,9 @@ OutOfOrderRays rays_out_of_order(const LayerOrderMeasure& measure,
 
 /// Rays whose layers come the other way round than on the source.
 struct SourceOrderCheck {
-  int rays_checked = 0;  ///< rays meeting two or more layers
-  int reordered = 0;     ///< of those, the rays with two layers met against the source's order
+  int rays_checked = 0;   ///< rays meeting two or more layers
+  int rays_compared = 0;  ///< of those, rays with two hits of known depth (an order to keep)
+  int reordered = 0;      ///< of those, the rays with two layers met against the source's order
 };
 
 /// Compares the order of each ray's layers with the order of the same garment points on the
@@ -129,12 +130,16 @@ struct SourceOrderCheck {
 /// `tolerance`, and apart by at most twice that difference in depth (one over the other,
 /// within 60° of the body's normal). Points closer in depth (layers touching, or crossing
 /// as given) or side by side on the source have no order to keep. Local, so that a layer
-/// tucked under another where it was tucked on the source is not counted.
-/// @throw std::invalid_argument when the surfaces differ in shape, the body has no face or
-///        the tolerance is negative.
+/// tucked under another where it was tucked on the source is not counted. Nor do hits
+/// without a depth: on a face of `unordered_faces` (per face of the outfit; empty: none),
+/// such as the tangles around crossings the input came with, or nearest to a face of the
+/// body along a cut (an open edge), where the body was cut away under the clothes.
+/// @throw std::invalid_argument when the surfaces differ in shape, the body has no face,
+///        the tolerance is negative or unordered_faces is neither empty nor one per face.
 SourceOrderCheck rays_reordered_from_source(const LayerOrderMeasure& measure,
                                             const TriangleMesh& result, const TriangleMesh& source,
-                                            const TriangleMesh& source_body, double tolerance);
+                                            const TriangleMesh& source_body, double tolerance,
+                                            const std::vector<char>& unordered_faces = {});
 
 /// An inside-to-outside order from the votes `before` (n × n, as in LayerOrderMeasure):
 /// a is inside b when before(a, b) > before(b, a). A layer that meets no other (no vote

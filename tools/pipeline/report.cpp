@@ -59,6 +59,7 @@ nlohmann::json to_json(const OutfitReport& r) {
           {"order_from", r.order_from},
           {"order_on_source", to_json(r.source)},
           {"order_on_result", to_json(r.result)},
+          {"rays_compared_with_source", r.rays_compared_with_source},
           {"reordered_from_source", r.reordered_from_source},
           {"order_kept", r.order_kept},
           {"layer_intersections", r.layer_intersections},
@@ -76,7 +77,9 @@ nlohmann::json to_json(const OutfitReport& r) {
            "meet them in that order, out_of_order counts the rays that meet an outer layer "
            "first. reordered_from_source: rays of the result whose first hits lay the other "
            "way round from the source body, at the same garment points, by more than the "
-           "barrier width (-1: no source body); the order is kept when there is none. hidden: "
+           "barrier width (-1: no source body), of rays_compared_with_source (rays with two "
+           "hits outside the input's tangles and over the body, not a cut); the order is kept "
+           "when there is none. hidden: "
            "avatar faces every garment covers (no ray from the face's normal "
            "cone escapes the outfit, and no opening lies within the margin), listed in "
            "hidden-avatar-faces.txt"}};

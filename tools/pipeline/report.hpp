@@ -179,6 +179,7 @@ struct OutfitReport {
   /// Rays of the result whose layers the same garment points met the other way round on the
   /// source (rays_reordered_from_source); -1 when there is no source body to compare with.
   int reordered_from_source = -1;
+  int rays_compared_with_source = 0;  ///< rays of the result with an order to keep
   /// With a source body: no ray reordered from the source. Without: no ray meets an outer
   /// layer first on the result where none did on the source, else no more such rays, in
   /// proportion, than on the source.

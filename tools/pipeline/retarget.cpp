@@ -12,6 +12,7 @@
 
 #include "core/io/atomic_file.hpp"
 #include "shrink/level_set/grid_distance_field.hpp"
+#include "tools/pipeline/inherited_crossings.hpp"
 #include "tools/pipeline/output_folder.hpp"
 #include "tools/pipeline/progress.hpp"
 #include "tools/pipeline/result_page.hpp"
@@ -354,7 +355,8 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   if (scene.layers.size() > 1) {
     OutfitOutput outfit = run_outfit(
         {scene, normalized, fit.garment, inferred.source_body ? &*inferred.source_body : nullptr,
-         certificate, out.string(), options.out_dir},
+         certificate, tangled_faces(normalized.garment, normalized_scene.inherited), out.string(),
+         options.out_dir},
         {given_order, options.write_avatar, parameters.dhat, {}}, progress);
     record_outfit(report, outfit.report, scene, written, recorded_paths, certified_output);
   }

@@ -261,6 +261,7 @@ TEST_CASE("Rays are compared with the source at the same garment points", "[outf
     const SourceOrderCheck check =
         rays_reordered_from_source(measure, result, source.surface, source_body, 0.01);
     CHECK(check.rays_checked == 6 * 16);
+    CHECK(check.rays_compared == 6 * 16);
     CHECK(check.reordered == 0);
   }
 
@@ -312,6 +313,31 @@ TEST_CASE("Rays are compared with the source at the same garment points", "[outf
     CHECK(
         rays_reordered_from_source(measure, source.surface, level_source.surface, source_body, 0.01)
             .reordered == 3 * 16);
+  }
+
+  SECTION("hits in a tangle, or over a cut of the body, have no order") {
+    const auto apart = [](double z) { return z > 0.0 ? 1.3 : 1.15; };
+    const LayeredOutfit apart_source =
+        merge_layers({with_radius(sleeve, shirt_radius), with_radius(sleeve, apart)});
+    const LayerOrderMeasure measure =
+        measure_layer_order({source.surface, source.face_layer, 2}, TriangleMesh{}, rays);
+    REQUIRE(
+        rays_reordered_from_source(measure, source.surface, apart_source.surface, source_body, 0.01)
+            .reordered == 3 * 16);
+    // The jacket's faces in a tangle: its hits carry no order.
+    std::vector<char> tangled(source.face_layer.size(), 0);
+    for (std::size_t f = 0; f < tangled.size(); ++f) tangled[f] = source.face_layer[f] == 1;
+    const SourceOrderCheck untangled = rays_reordered_from_source(
+        measure, source.surface, apart_source.surface, source_body, 0.01, tangled);
+    CHECK(untangled.reordered == 0);
+    CHECK(untangled.rays_compared == 0);
+    // A body cut away below z = 0.5: every point below lies nearest its open rim.
+    const TriangleMesh cut_body = open_cylinder(1.0, 0.5, 3.0, 6, 32);
+    CHECK(rays_reordered_from_source(measure, source.surface, apart_source.surface, cut_body, 0.01)
+              .reordered == 0);
+    CHECK_THROWS_AS(rays_reordered_from_source(measure, source.surface, apart_source.surface,
+                                               source_body, 0.01, std::vector<char>(3, 0)),
+                    std::invalid_argument);
   }
 
   SECTION("bad arguments") {

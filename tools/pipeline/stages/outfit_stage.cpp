@@ -136,13 +136,15 @@ OutfitOutput run_outfit(const OutfitInput& input, const OutfitOptions& options,
   };
   std::string reordered;
   if (input.source_body && input.source_body->faces.rows() > 0) {
-    const SourceOrderCheck check =
-        rays_reordered_from_source(on_result, result_outfit.surface, normalized.garment,
-                                   *input.source_body, options.order_tolerance);
+    const SourceOrderCheck check = rays_reordered_from_source(
+        on_result, result_outfit.surface, normalized.garment, *input.source_body,
+        options.order_tolerance, input.tangled_faces);
     report.reordered_from_source = check.reordered;
+    report.rays_compared_with_source = check.rays_compared;
     report.order_kept = check.reordered == 0;
-    reordered =
-        fmt::format("; {} of them met the other way round than on the source", check.reordered);
+    reordered = fmt::format(
+        "; of the {} with an order to keep, {} met the other way round than on the source",
+        check.rays_compared, check.reordered);
   } else {
     report.order_kept =
         report.result.out_of_order == 0 ||

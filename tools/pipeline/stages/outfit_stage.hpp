@@ -28,8 +28,11 @@ struct OutfitInput {
   const MatrixX3d& garment;  ///< the written outfit (normalized #Vg×3, every layer)
   const TriangleMesh* source_body = nullptr;  ///< normalized; null: none given
   const Certificate& certificate;             ///< of the written garments, a layer each
-  std::string out_dir;                        ///< where the files are written (staging)
-  std::string final_dir;                      ///< where they will be (named in the report)
+  /// Per garment face, whether it lies in a tangle of crossings the input came with
+  /// (InheritedCrossings::tangles): the layers have no order there. Empty: none.
+  std::vector<char> tangled_faces;
+  std::string out_dir;    ///< where the files are written (staging)
+  std::string final_dir;  ///< where they will be (named in the report)
 };
 
 struct OutfitOptions {
