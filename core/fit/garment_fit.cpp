@@ -34,7 +34,7 @@ FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3
   options.max_iterations = parameters.fit_iteration_cap();
   FitResult result;
   if (guide.size > 0) {
-    result.guide = follow_guide(problem, x, guide);
+    result.guide = follow_guide(problem, x, guide, options);
     // Only a garment that followed the guide to its end is near the end of its fit; one
     // the guide left early fits as it would have without it.
     if (parameters.guided_fit_max_iterations > 0 && result.guide.reached_end)

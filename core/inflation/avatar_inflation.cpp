@@ -36,7 +36,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
   const Eigen::VectorXd initial = layout.pack(0.0, scene.garment.vertices);
   Eigen::VectorXd x = initial;
   InflationResult result;
-  if (guide.path.size > 0) result.guide = follow_guide(problem, x, guide.path);
+  if (guide.path.size > 0) result.guide = follow_guide(problem, x, guide.path, newton_options);
   if (guide.lambda1 > 0.0) {
     al.lambda1 = guide.lambda1;
     al.lambda2 = guide.lambda2;

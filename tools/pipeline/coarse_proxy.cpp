@@ -101,8 +101,44 @@ Vector3d corner(const Eigen::Ref<const MatrixX3d>& vertices, const MatrixX3i& fa
   return vertices.row(faces(f, k)).transpose();
 }
 
-/// The garment decimated by edge collapses (Lindstrom–Turk, no collapse that turns a face's
-/// normal by more than a right angle), or empty when CGAL cannot read it as a surface.
+/// A proxy face's shape below which a collapse is refused: 4√3 area over the sum of its
+/// squared edges, 1 for an equilateral triangle. Decimating a subdivided garment short of
+/// its original faces collapses edges inside flat triangles, where every collapse costs
+/// nothing, and leaves slivers that a garment carried on them cannot follow.
+constexpr double kSmallestProxyShape = 0.2;
+
+/// 4√3 area over the sum of squared edges of triangle (a, b, c).
+double triangle_shape(const Point& a, const Point& b, const Point& c) {
+  const Kernel::Vector_3 ab = b - a, ac = c - a, bc = c - b;
+  const double squared_edges = ab.squared_length() + ac.squared_length() + bc.squared_length();
+  if (!(squared_edges > 0.0)) return 0.0;
+  const double area = 0.5 * std::sqrt(CGAL::cross_product(ab, ac).squared_length());
+  return 4.0 * std::sqrt(3.0) * area / squared_edges;
+}
+
+/// An edge-collapse filter (CGAL's filter concept) that refuses a collapse leaving a face of
+/// shape below kSmallestProxyShape around the placed vertex.
+struct KeepTriangleShapes {
+  template <typename Profile>
+  boost::optional<typename Profile::Point> operator()(
+      const Profile& profile, boost::optional<typename Profile::Point> placement) const {
+    if (!placement) return placement;
+    const auto& points = profile.vertex_point_map();
+    auto triangle = profile.triangles().begin();
+    // The first triangles are the ones the collapse removes: those beside the edge.
+    if (profile.left_face_exists()) ++triangle;
+    if (profile.right_face_exists()) ++triangle;
+    for (; triangle != profile.triangles().end(); ++triangle)
+      if (triangle_shape(get(points, triangle->v0), *placement, get(points, triangle->v2)) <
+          kSmallestProxyShape)
+        return boost::none;
+    return placement;
+  }
+};
+
+/// The garment decimated by edge collapses (Lindstrom–Turk; no collapse that turns a face's
+/// normal by more than a right angle or leaves a sliver), or empty when CGAL cannot read it
+/// as a surface.
 std::optional<TriangleMesh> decimate(const TriangleMesh& garment, int target_faces) {
   std::vector<Point> points;
   points.reserve(static_cast<std::size_t>(garment.vertices.rows()));
@@ -122,7 +158,9 @@ std::optional<TriangleMesh> decimate(const TriangleMesh& garment, int target_fac
   const double edge_ratio =
       std::min(1.0, static_cast<double>(target_faces) / static_cast<double>(garment.faces.rows()));
   SMS::Count_ratio_stop_predicate<SurfaceMesh> stop(edge_ratio);
-  SMS::edge_collapse(mesh, stop, CGAL::parameters::filter(SMS::Bounded_normal_change_filter<>()));
+  SMS::edge_collapse(
+      mesh, stop,
+      CGAL::parameters::filter(SMS::Bounded_normal_change_filter<KeepTriangleShapes>()));
   mesh.collect_garbage();
 
   TriangleMesh proxy;

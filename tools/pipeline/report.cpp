@@ -88,10 +88,9 @@ nlohmann::json to_json(const OutfitReport& r) {
 namespace {
 
 nlohmann::json guide_json(const GuideFollowed& followed) {
-  return {{"points", followed.points},
-          {"reached", followed.points_reached},
-          {"cut_by_ccd", followed.cut_motions},
-          {"held_back", followed.held_motions},
+  return {{"points", followed.points},          {"reached", followed.points_reached},
+          {"cut_by_ccd", followed.cut_motions}, {"held_back", followed.held_motions},
+          {"recoveries", followed.recoveries},  {"recovery_steps", followed.recovery_steps},
           {"reached_end", followed.reached_end}};
 }
 

@@ -1,6 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
+
+#include <Eigen/SparseCore>
 
 #include "core/solver/guide_path.hpp"
 
@@ -138,4 +142,99 @@ TEST_CASE("follow_guide: a motion held back in part lets the rest follow to the 
   CHECK(cut.cut_motions == 2);
   CHECK_FALSE(cut.reached_end);
   CHECK(y[1] < 1.0);
+}
+
+namespace {
+
+/// A point in the plane kept out of the unit disc by a log barrier on its distance d to
+/// the circle, -(d - h)^2 ln(d / h) within h = 0.5 (its Hessian projected: the normal
+/// part). max_step keeps a tenth of the gap to the circle along the motion, as a CCD
+/// that leaves a separation does.
+class DiscProblem : public Problem {
+ public:
+  int dof_count() const override { return 2; }
+  double value(const Eigen::VectorXd& x) override {
+    const double d = x.norm() - 1.0;
+    if (!(d > 0.0)) return INFINITY;
+    return d < kReach ? -(d - kReach) * (d - kReach) * std::log(d / kReach) : 0.0;
+  }
+  void gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) override {
+    const double d = x.norm() - 1.0;
+    g = d < kReach ? Eigen::VectorXd(slope(d) * x.normalized()) : Eigen::VectorXd::Zero(2);
+  }
+  void hessian(const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& H) override {
+    const double d = x.norm() - 1.0;
+    const Eigen::Vector2d n = x.normalized();
+    const double c = d < kReach ? curvature(d) : 0.0;
+    const Eigen::Matrix2d dense = std::max(c, 0.0) * n * n.transpose();
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) entries.emplace_back(i, j, dense(i, j));
+    H.resize(2, 2);
+    H.setFromTriplets(entries.begin(), entries.end());
+  }
+  double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override {
+    // |x + s dx|^2 = 1: the first root in [0, 1], if any.
+    const double a = dx.squaredNorm(), b = 2.0 * x.dot(dx), c = x.squaredNorm() - 1.0;
+    const double discriminant = b * b - 4.0 * a * c;
+    if (!(a > 0.0) || discriminant < 0.0) return 1.0;
+    const double s = (-b - std::sqrt(discriminant)) / (2.0 * a);
+    return s >= 0.0 && s <= 1.0 ? 0.9 * s : 1.0;
+  }
+  void solution_changed(const Eigen::VectorXd& x) override {
+    closest = std::min(closest, x.norm());
+  }
+  double closest = INFINITY;  ///< the smallest |x| among the points the problem was shown
+
+ private:
+  static constexpr double kReach = 0.5;
+  static double slope(double d) {
+    return -2.0 * (d - kReach) * std::log(d / kReach) - (d - kReach) * (d - kReach) / d;
+  }
+  static double curvature(double d) {
+    return -2.0 * std::log(d / kReach) - 4.0 * (d - kReach) / d +
+           (d - kReach) * (d - kReach) / (d * d);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("follow_guide: a motion stopped by an obstacle recovers around it", "[solver][guide]") {
+  DiscProblem problem;
+  GuidePath path;
+  // In front of the disc, then behind it (the motion there is cut at once), then on.
+  path.size = 3;
+  path.point = [](int index, Eigen::VectorXd& point) {
+    point =
+        Eigen::Vector2d(std::vector<double>{-1.3, 2.0, 2.5}[static_cast<std::size_t>(index)], 0.3);
+  };
+  SECTION("with recovery steps, the point slides around the disc and the path goes on") {
+    path.recovery_steps = 8;
+    Eigen::VectorXd x = Eigen::Vector2d(-2.0, 0.3);
+    const GuideFollowed followed = follow_guide(problem, x, path);
+    CAPTURE(x.transpose(), followed.recovery_steps);
+    CHECK(followed.recoveries >= 1);
+    CHECK(followed.recovery_steps >= 1);
+    CHECK(followed.reached_end);
+    CHECK(followed.points_reached == 3);
+    CHECK(x == Eigen::Vector2d(2.5, 0.3));
+    CHECK(problem.closest > 1.0);
+  }
+  SECTION("without, the path is left in front of the disc") {
+    Eigen::VectorXd x = Eigen::Vector2d(-2.0, 0.3);
+    const GuideFollowed followed = follow_guide(problem, x, path);
+    CHECK(followed.recoveries == 0);
+    CHECK_FALSE(followed.reached_end);
+    CHECK(x[0] < -0.9);
+  }
+  SECTION("straight at the disc's centre nothing slides: two recoveries, then it is left") {
+    path.recovery_steps = 8;
+    path.point = [](int, Eigen::VectorXd& point) { point = Eigen::Vector2d(2.0, 0.0); };
+    Eigen::VectorXd x = Eigen::Vector2d(-2.0, 0.0);
+    const GuideFollowed followed = follow_guide(problem, x, path);
+    CHECK(followed.recoveries == 2);
+    CHECK_FALSE(followed.reached_end);
+    CHECK(x[0] < -1.0);
+    CHECK(problem.closest > 1.0);
+  }
 }

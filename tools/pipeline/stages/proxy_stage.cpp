@@ -19,6 +19,12 @@ constexpr double kGuideSpacing = 0.02;
 /// lengths.
 constexpr double kFadeEdges = 4.0;
 
+/// Newton steps of the garment's own, pulled towards the point, that each recovery from a
+/// motion cut below a tenth may take before it is tried again (GuidePath::recovery_steps):
+/// a few steps slide it around a fold or a bump the proxy did not have, which costs far
+/// less than leaving the path.
+constexpr int kRecoverySteps = 8;
+
 /// The indices of `points` (dofs of `layout`) a garment follows: thinned to kGuideSpacing.
 std::vector<int> spaced_points(const std::vector<Eigen::VectorXd>& points,
                                const DofLayout& layout) {
@@ -49,6 +55,7 @@ InflationGuide ProxyPaths::inflation() const {
       std::make_shared<const std::vector<int>>(spaced_points(inflation_points, proxy_layout));
   guide.path.size = static_cast<int>(kept->size());
   guide.path.fade_length = kFadeEdges * proxy_->edge_length;
+  guide.path.recovery_steps = kRecoverySteps;
   guide.path.point = [this, proxy_layout, fine_layout, kept](int index, Eigen::VectorXd& point) {
     const Eigen::VectorXd& x =
         inflation_points[static_cast<std::size_t>((*kept)[static_cast<std::size_t>(index)])];
@@ -67,6 +74,7 @@ GuidePath ProxyPaths::fit(const MatrixX3d& fine_start) const {
       std::make_shared<const MatrixX3d>(fine_start - proxy_->embedding.carry(inflated));
   path.size = static_cast<int>(kept->size());
   path.fade_length = kFadeEdges * proxy_->edge_length;
+  path.recovery_steps = kRecoverySteps;
   path.point = [this, proxy_layout, fine_layout, kept, offset](int index, Eigen::VectorXd& point) {
     const Eigen::VectorXd& x =
         fit_points[static_cast<std::size_t>((*kept)[static_cast<std::size_t>(index)])];

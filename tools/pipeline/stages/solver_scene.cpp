@@ -78,11 +78,15 @@ bool widen_scope_if_left(SolverScene& solver, const MatrixX3d& garment, double d
 }
 
 std::string describe_following(const GuideFollowed& followed) {
+  std::string recoveries;
+  if (followed.recoveries > 0)
+    recoveries = fmt::format(", {} recovered from in {} Newton steps", followed.recoveries,
+                             followed.recovery_steps);
   return fmt::format(
-      "followed the proxy to {} of its {} points ({} motions held back in part, {} cut by "
-      "CCD{})",
-      followed.points_reached, followed.points, followed.held_motions, followed.cut_motions,
-      followed.reached_end ? "" : ", left early");
+      "followed the proxy's {} points {}: {} reached exactly, {} motions held back in part, {} "
+      "cut by CCD{}",
+      followed.points, followed.reached_end ? "to the end" : "and left them early",
+      followed.points_reached, followed.held_motions, followed.cut_motions, recoveries);
 }
 
 NewtonCallback newton_progress(const Progress& progress, const char* stage_name) {
