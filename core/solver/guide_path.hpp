@@ -48,11 +48,10 @@ struct GuideFollowed {
 /// that many steps, minimizes the problem's objective plus a spring to the point, as stiff
 /// on every dof as four times the median over the dofs of the objective's curvature, so
 /// that where something is met its barrier outweighs the spring and x slides around it
-/// towards the point; then the
-/// motion is tried again, twice at most per point and eight times along the path. Where
-/// it is still cut below a tenth, the path is left for good (the solve then starts from
-/// x). So x stays as safe as the start point, whatever the path: the path only saves the
-/// solve's steps.
+/// towards the point; then the motion is tried again, twice at most per point and eight
+/// times along the path. Where it is still cut below a tenth, the path is left for good
+/// (the solve then starts from x). So x stays as safe as the start point, whatever the
+/// path: the path only saves the solve's steps.
 /// @pre x is a safe point of `problem` (for contact: intersection free).
 GuideFollowed follow_guide(Problem& problem, Eigen::VectorXd& x, const GuidePath& path,
                            const NewtonOptions& newton = {});
