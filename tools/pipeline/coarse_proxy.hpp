@@ -15,10 +15,16 @@ namespace gr {
 class SurfaceEmbedding {
  public:
   SurfaceEmbedding() = default;
+  /// Each fine vertex lies on a face of its own piece (a garment's vertices never follow
+  /// another garment's faces), or on the nearest face when its piece has none.
   /// @param coarse the coarse mesh at rest (#Vc×3, #Fc×3), in the fine mesh's frame.
   /// @param fine_vertices #Vf×3.
+  /// @param coarse_vertex_piece, fine_vertex_piece per vertex, its piece (any ids common to
+  ///        both); empty: one piece.
   /// @pre coarse has at least one face.
-  SurfaceEmbedding(const TriangleMesh& coarse, const MatrixX3d& fine_vertices);
+  SurfaceEmbedding(const TriangleMesh& coarse, const MatrixX3d& fine_vertices,
+                   const std::vector<int>& coarse_vertex_piece = {},
+                   const std::vector<int>& fine_vertex_piece = {});
 
   /// The fine vertices (#Vf×3) where the coarse mesh has `coarse_vertices` (#Vc×3, the
   /// rest's connectivity); at rest, the fine vertices again (to rounding). A coarse face
@@ -35,6 +41,7 @@ class SurfaceEmbedding {
   };
   MatrixX3i faces_;
   std::vector<Placement> placements_;
+
   double max_offset_ = 0.0;
 };
 
@@ -57,8 +64,10 @@ struct CoarseProxy {
 /// garment carries data the proxy cannot stand for (ties, attachments, tangles, faces
 /// out of the avatar contact), CGAL's decimation cannot read it as a surface, or the
 /// decimated garment is degenerate or crosses the shrunk avatar or itself (exact test),
-/// which the barrier solve must never start from. Per-vertex data (no-fit, fit offsets)
-/// is the nearest fine vertex's.
+/// which the barrier solve must never start from. Each piece (a layer of an outfit, a
+/// pocket) is decimated on its own by the same ratio, and carries only its own garment
+/// vertices. Per-vertex data (no-fit, fit offsets, skirt vertices) is the nearest fine
+/// vertex's of the same piece.
 /// @pre target_faces > 0.
 std::optional<CoarseProxy> make_coarse_proxy(const GarmentScene& fine, int target_faces,
                                              std::string& why_not);

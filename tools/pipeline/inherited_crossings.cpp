@@ -4,6 +4,7 @@
 #include <map>
 #include <numeric>
 
+#include "core/mesh/pieces.hpp"
 #include "core/mesh/vertex_neighbours.hpp"
 
 namespace gr {
@@ -91,14 +92,11 @@ std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
   std::vector<Attachment> attachments;
   if (pairs.empty()) return attachments;
   const auto n = static_cast<std::size_t>(garment.vertices.rows());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  const std::vector<int> piece_of_vertex = vertex_pieces(garment);
   const auto& F = garment.faces;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    unite(parent, F(f, 0), F(f, 1));
-    unite(parent, F(f, 0), F(f, 2));
-  }
-  const auto piece_of_face = [&](int f) { return find_root(parent, F(f, 0)); };
+  const auto piece_of_face = [&](int f) {
+    return piece_of_vertex[static_cast<std::size_t>(F(f, 0))];
+  };
   std::vector<int> face_count(n, 0);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     ++face_count[static_cast<std::size_t>(piece_of_face(static_cast<int>(f)))];
@@ -121,7 +119,7 @@ std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
     for (Eigen::Index f = 0; f < F.rows(); ++f)
       if (piece_of_face(static_cast<int>(f)) == host) host_faces.push_back(static_cast<int>(f));
     for (std::size_t v = 0; v < n; ++v) {
-      if (find_root(parent, static_cast<int>(v)) != piece) continue;
+      if (piece_of_vertex[v] != piece) continue;
       const Vector3d x = garment.vertices.row(static_cast<Eigen::Index>(v)).transpose();
       Attachment best;
       double nearest = std::numeric_limits<double>::infinity();

@@ -171,8 +171,15 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
   solver_scene();
   const bool ease_fit = report.ease.fit == FitMode::kEase;
   const SourceEase* source_ease = ease_fit ? &in.inferred.source_ease : nullptr;
+  int largest_layer_faces = 0;
+  if (in.scene.layers.size() > 1) {
+    std::vector<int> layer_faces(in.scene.layers.size(), 0);
+    for (const int layer : layer_of_garment_faces(in.scene))
+      ++layer_faces[static_cast<std::size_t>(layer)];
+    largest_layer_faces = *std::max_element(layer_faces.begin(), layer_faces.end());
+  }
   ProxyOutput proxy =
-      run_proxy({solver, source_ease},
+      run_proxy({solver, source_ease, largest_layer_faces},
                 {parameters, report.parameters.proxy_faces, report.ease.max_offset}, progress);
   report.proxy = proxy.report;
   report.seconds.proxy = proxy.report.seconds;

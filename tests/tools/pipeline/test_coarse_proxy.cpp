@@ -121,7 +121,7 @@ TEST_CASE("coarse proxy: a subdivided sleeve decimated short of its own faces ha
 
 TEST_CASE(
     "coarse proxy: none where the proxy would cross the shrunk avatar or the garment "
-    "carries ties",
+    "carries ties or crossings",
     "[pipeline][coarse_to_fine]") {
   std::string why_not;
   SECTION("the decimated sleeve's chords cut into a shrunk avatar just inside the sleeve") {
@@ -137,6 +137,65 @@ TEST_CASE(
     CHECK_FALSE(make_coarse_proxy(scene, 100, why_not).has_value());
     CHECK_THAT(why_not, Catch::Contains("split edges"));
   }
+  SECTION("crossings as given, in tangles") {
+    // Layers of an outfit that cross as given: the garment cannot follow a proxy through
+    // the crossings, where the two have different pairs left out of contact.
+    GarmentScene scene = sleeve_scene(10, 64, 0.28);
+    scene.garment_tangles.assign(static_cast<std::size_t>(scene.garment.vertices.rows()), -1);
+    scene.garment_tangles[0] = 0;
+    CHECK_FALSE(make_coarse_proxy(scene, 100, why_not).has_value());
+    CHECK_THAT(why_not, Catch::Contains("crossings"));
+  }
+}
+
+namespace {
+
+/// `first` and `second` as one mesh, `second`'s vertices after `first`'s.
+TriangleMesh joined(const TriangleMesh& first, const TriangleMesh& second) {
+  TriangleMesh mesh;
+  mesh.vertices.resize(first.vertices.rows() + second.vertices.rows(), 3);
+  mesh.vertices << first.vertices, second.vertices;
+  mesh.faces.resize(first.faces.rows() + second.faces.rows(), 3);
+  mesh.faces << first.faces, second.faces.array() + static_cast<int>(first.vertices.rows());
+  return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("coarse proxy: layers decimated one by one, each carrying only its own vertices",
+          "[pipeline][coarse_to_fine]") {
+  // Two short sleeves, fine around and 0.01 apart: their proxies have far fewer segments,
+  // each a sleeve of its own.
+  GarmentScene scene = sleeve_scene(2, 3, 0.28);
+  const TriangleMesh inner = open_cylinder(0.5, -0.2, 0.2, 8, 128);
+  scene.garment = joined(inner, open_cylinder(0.51, -0.2, 0.2, 8, 128));
+  const auto inner_vertices = static_cast<int>(inner.vertices.rows());
+  std::string why_not;
+  const std::optional<CoarseProxy> proxy = make_coarse_proxy(scene, 600, why_not);
+  INFO(why_not);
+  REQUIRE(proxy.has_value());
+  const TriangleMesh& coarse = proxy->scene.garment;
+  const auto outer_proxy_vertex = [&](int v) {
+    return proxy->fine_vertex[static_cast<std::size_t>(v)] >= inner_vertices;
+  };
+  int inner_faces = 0;
+  for (Eigen::Index f = 0; f < coarse.faces.rows(); ++f) {
+    const bool outer = outer_proxy_vertex(coarse.faces(f, 0));
+    CHECK(outer_proxy_vertex(coarse.faces(f, 1)) == outer);
+    CHECK(outer_proxy_vertex(coarse.faces(f, 2)) == outer);
+    inner_faces += !outer;
+  }
+  // The same ratio for both: about half the faces each.
+  CHECK(std::abs(2 * inner_faces - coarse.faces.rows()) < coarse.faces.rows() / 10);
+  // The outer proxy moved, the inner one still: only the outer sleeve's vertices move.
+  MatrixX3d moved = coarse.vertices;
+  for (Eigen::Index v = 0; v < moved.rows(); ++v)
+    if (outer_proxy_vertex(static_cast<int>(v))) moved(v, 0) += 1.0;
+  const MatrixX3d carried = proxy->embedding.carry(moved);
+  const MatrixX3d motion = carried - scene.garment.vertices;
+  CHECK(motion.topRows(inner_vertices).cwiseAbs().maxCoeff() < 1e-9);
+  CHECK((motion.bottomRows(motion.rows() - inner_vertices).col(0).array() - 1.0).abs().maxCoeff() <
+        1e-9);
 }
 
 TEST_CASE("coarse to fine: a dense sleeve follows its proxy onto a capsule, certified",

@@ -82,6 +82,40 @@ TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order
   }
 }
 
+TEST_CASE("outfit: layers denser than twice the proxy are solved coarse to fine, certified",
+          "[pipeline][outfit][coarse_to_fine]") {
+  const NestedSleeves scene = test::write_nested_sleeves(test::fresh_temp_dir("outfit_proxy"));
+  RetargetOptions options = outfit_options(scene, {0, 1, 2});
+  // Each sleeve has 704 faces: over twice 300, so the outfit has a proxy, each layer
+  // decimated to about 300 faces.
+  options.overrides.set("proxy_faces", 300);
+  const RetargetResult result = test::run_and_check(options);
+  INFO(result.message);
+  REQUIRE(result.status == Outcome::kCertified);
+  const RetargetReport& r = result.report;
+  INFO(r.proxy.reason);
+  REQUIRE(r.proxy.used);
+  CHECK(r.proxy.faces >= 3 * 250);
+  CHECK(r.proxy.faces <= 3 * 350);
+  CHECK(r.proxy.inflate_path.reached_end);
+  REQUIRE(r.outfit.has_value());
+  CHECK(r.outfit->order == std::vector<std::string>{"inner", "middle", "outer"});
+  CHECK(r.outfit->order_kept);
+  CHECK(r.outfit->result.out_of_order == 0);
+  for (const OutfitLayerReport& layer : r.outfit->layers) {
+    INFO(layer.name);
+    CHECK(layer.shape.mean_edge_change <= 0.15);
+  }
+
+  // Below twice the proxy per layer, the outfit is solved directly, whatever its total.
+  options.overrides.set("proxy_faces", 400);
+  options.out_dir = (scene.dir / "direct").string();
+  const RetargetResult direct = test::run_and_check(options);
+  REQUIRE(direct.status == Outcome::kCertified);
+  CHECK_FALSE(direct.report.proxy.used);
+  CHECK_THAT(direct.report.proxy.reason, Catch::Contains("largest layer's 704 faces"));
+}
+
 TEST_CASE("outfit: a given layer order is used, and one the result contradicts is reported",
           "[pipeline][outfit]") {
   const NestedSleeves scene =

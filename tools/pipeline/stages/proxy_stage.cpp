@@ -1,5 +1,7 @@
 #include "tools/pipeline/stages/proxy_stage.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "core/fit/garment_fit.hpp"
@@ -89,9 +91,14 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
   ProxyReport& report = out.report;
   const GarmentScene& fine = input.solver.scene;
   const auto faces = static_cast<int>(fine.garment.faces.rows());
-  if (options.proxy_faces <= 0 || faces <= 2 * options.proxy_faces) {
-    report.reason = options.proxy_faces <= 0
-                        ? "coarse to fine is off (--proxy-faces 0)"
+  const int layer_faces = input.largest_layer_faces > 0 ? input.largest_layer_faces : faces;
+  if (options.proxy_faces <= 0 || layer_faces <= 2 * options.proxy_faces) {
+    report.reason = options.proxy_faces <= 0 ? "coarse to fine is off (--proxy-faces 0)"
+                    : input.largest_layer_faces > 0
+                        ? fmt::format(
+                              "the largest layer's {} faces are at most twice "
+                              "--proxy-faces {}",
+                              layer_faces, options.proxy_faces)
                         : fmt::format("{} faces are at most twice --proxy-faces {}", faces,
                                       options.proxy_faces);
     return out;
@@ -103,7 +110,9 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
     return out;
   };
   std::string why_not;
-  std::optional<CoarseProxy> made = make_coarse_proxy(fine, options.proxy_faces, why_not);
+  const auto proxy_faces =
+      static_cast<int>(std::lround(static_cast<double>(options.proxy_faces) * faces / layer_faces));
+  std::optional<CoarseProxy> made = make_coarse_proxy(fine, proxy_faces, why_not);
   if (!made) return not_used(why_not);
   const auto proxy = std::make_shared<const CoarseProxy>(std::move(*made));
   report.faces = static_cast<int>(proxy->scene.garment.faces.rows());

@@ -44,11 +44,15 @@ struct ProxyInput {
   const SolverScene& solver;  ///< the garment's
   /// The garment's ease on its source body for the ease fit; null: the tight fit.
   const SourceEase* source_ease = nullptr;
+  /// The faces of the outfit's largest layer; 0: the garment is one layer.
+  int largest_layer_faces = 0;
 };
 
 struct ProxyOptions {
   RetargetParameters parameters;
-  int proxy_faces = 0;           ///< the proxy's size; a garment of more than twice this has one
+  /// The size of the largest layer's proxy (the others are decimated by the same ratio); a
+  /// garment whose largest layer has more than twice this has one.
+  int proxy_faces = 0;
   double max_ease_offset = 0.0;  ///< as FitOptions::max_ease_offset
 };
 
@@ -57,11 +61,13 @@ struct ProxyOutput {
   ProxyReport report;
 };
 
-/// Coarse to fine, the coarse part: for a garment of more than twice options.proxy_faces
-/// faces, decimates it (make_coarse_proxy) and runs the inflation and the fit on the
-/// proxy, recording their iterates for the garment's own solves to follow. No paths when
-/// the garment is small enough, has no valid proxy, or the proxy's solves fail; the
-/// garment is then solved directly, and the report says why.
+/// Coarse to fine, the coarse part: for a garment (an outfit: whose largest layer has) of
+/// more than twice options.proxy_faces faces, decimates it (make_coarse_proxy) and runs the
+/// inflation and the fit on the proxy, recording their iterates for the garment's own
+/// solves to follow. No paths when the garment is small enough, has no valid proxy, or the
+/// proxy's solves fail; the garment is then solved directly, and the report says why. An
+/// outfit of ordinary layers is solved directly: a proxy pays where each layer is dense, and
+/// one of several layers together keeps too little of each one's folds and ease.
 /// @throw RunStopped from progress.control().
 ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Progress& progress);
 
