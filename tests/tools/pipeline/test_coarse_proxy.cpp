@@ -170,14 +170,27 @@ TEST_CASE("coarse proxy: layers decimated one by one, each carrying only its own
   const TriangleMesh inner = open_cylinder(0.5, -0.2, 0.2, 8, 128);
   scene.garment = joined(inner, open_cylinder(0.51, -0.2, 0.2, 8, 128));
   const auto inner_vertices = static_cast<int>(inner.vertices.rows());
+  // The inner sleeve is a skirt, the outer one not.
+  std::vector<char> skirt(static_cast<std::size_t>(scene.garment.vertices.rows()), 0);
+  std::fill_n(skirt.begin(), inner_vertices, 1);
+  scene.skeletons = SkeletonMotion{MatrixX3d(), MatrixX3d(), MatrixX2i(), skirt};
   std::string why_not;
   const std::optional<CoarseProxy> proxy = make_coarse_proxy(scene, 600, why_not);
   INFO(why_not);
   REQUIRE(proxy.has_value());
   const TriangleMesh& coarse = proxy->scene.garment;
+  // Each proxy vertex stands for a vertex of its own sleeve, and takes its skirt flag.
   const auto outer_proxy_vertex = [&](int v) {
     return proxy->fine_vertex[static_cast<std::size_t>(v)] >= inner_vertices;
   };
+  REQUIRE(proxy->scene.skeletons.has_value());
+  const std::vector<char>& proxy_skirt = proxy->scene.skeletons->skirt_vertices;
+  REQUIRE(proxy_skirt.size() == static_cast<std::size_t>(coarse.vertices.rows()));
+  for (Eigen::Index v = 0; v < coarse.vertices.rows(); ++v) {
+    const bool outer = coarse.vertices.row(v).leftCols(2).norm() > 0.505;
+    CHECK(outer_proxy_vertex(static_cast<int>(v)) == outer);
+    CHECK((proxy_skirt[static_cast<std::size_t>(v)] != 0) == !outer);
+  }
   int inner_faces = 0;
   for (Eigen::Index f = 0; f < coarse.faces.rows(); ++f) {
     const bool outer = outer_proxy_vertex(coarse.faces(f, 0));
