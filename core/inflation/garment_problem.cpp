@@ -1,5 +1,6 @@
 #include "core/inflation/garment_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -259,6 +260,17 @@ bool GarmentProblem::goal_reached(const Eigen::VectorXd& x) {
 double GarmentProblem::minimum_distance(const Eigen::VectorXd& x) {
   contact_->update_candidates(layout_.garment(x), layout_.t(x));
   return contact_->minimum_distance(layout_.garment(x), layout_.t(x));
+}
+
+int pressed_tangle_pairs(const GarmentScene& scene, const RetargetParameters& parameters,
+                         const Eigen::Ref<const MatrixX3d>& garment, double gap) {
+  if (scene.garment_tangles.empty()) return 0;
+  const ContactMesh mesh = contact_mesh_for(scene, parameters);
+  const std::vector<std::array<int, 5>> close = tangled_pairs_closer_than(mesh, garment, gap);
+  const std::vector<std::array<int, 5>>& unmodelled = mesh.unmodelled_self_pairs;
+  return static_cast<int>(std::count_if(close.begin(), close.end(), [&](const auto& key) {
+    return !std::binary_search(unmodelled.begin(), unmodelled.end(), key);
+  }));
 }
 
 }  // namespace gr

@@ -162,4 +162,13 @@ class GarmentProblem : public Problem {
   Eigen::SparseMatrix<double> fixed_hessian_;
 };
 
+/// Self pairs of one tangle (GarmentScene::garment_tangles) that `garment` holds closer
+/// than `gap` though the problem models them (apart at the start). A crossing the input came
+/// with cannot slide, since its faces must stay the ones that cross: an inflation that
+/// stalls with such pairs is jammed at a crossing, which a wider barrier keeps apart
+/// earlier, rather than between body parts.
+/// @param parameters the solve's: its dhat decides which pairs are modelled.
+int pressed_tangle_pairs(const GarmentScene& scene, const RetargetParameters& parameters,
+                         const Eigen::Ref<const MatrixX3d>& garment, double gap);
+
 }  // namespace gr

@@ -40,6 +40,9 @@ constexpr double kStalledPullbackFactor = 0.2;
 /// When the inflation stalls from every shrink, it runs once more with a barrier this many
 /// times wider.
 constexpr double kStalledBarrierFactor = 2.0;
+/// A stalled inflation whose tangle pairs lie closer than this fraction of dhat is jammed at
+/// a crossing the input came with: the barrier there is overpowered.
+constexpr double kPressedGap = 0.01;
 
 void write_report(const std::string& path, const RetargetReport& report) {
   const nlohmann::json json = to_json(report);
@@ -186,8 +189,34 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
   // A retry below solves the garment directly: the proxy's paths lead where it failed.
   InflationResult inflation = inflate(proxy.paths ? proxy.paths->inflation() : InflationGuide());
   report.proxy.inflate_path = inflation.guide;
-  if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure &&
-      in.shrink_options.mode == ShrinkMode::kSkeleton) {
+  const auto stalled = [&] {
+    return !inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure;
+  };
+  // Layers and pieces pressed together by the growing avatar (a trouser cuff inside a
+  // shoe) can jam in a barrier thinner than their gap to each other: a wider one keeps
+  // them apart earlier, so that they move together.
+  bool widened = false;
+  const auto inflate_wider = [&](const std::string& why) {
+    double& dhat = report.parameters.solver.dhat;
+    progress.warn(
+        fmt::format("the inflation stalled with dhat {:.3g}{}: inflating again with "
+                    "a barrier twice as wide (--dhat {:.3g})",
+                    dhat, why, kStalledBarrierFactor * dhat));
+    dhat *= kStalledBarrierFactor;
+    widened = true;
+    solver_scene();
+    inflation = inflate({});
+  };
+  // A crossing the input came with cannot slide: jammed there, the garment needs the wider
+  // barrier, and a thinner avatar would only stall again.
+  if (stalled()) {
+    const int pressed = pressed_tangle_pairs(solver.scene, parameters, inflation.garment,
+                                             kPressedGap * parameters.dhat);
+    if (pressed > 0)
+      inflate_wider(
+          fmt::format(", {} pairs pressed together at crossings the input came with", pressed));
+  }
+  if (stalled() && in.shrink_options.mode == ShrinkMode::kSkeleton) {
     const double pullback = kStalledPullbackFactor * shrink.shrunk.pullback;
     const std::string no_thinner =
         run_thinner_shrink(in.shrink_input, in.shrink_options, pullback, shrink, progress);
@@ -203,19 +232,7 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
     solver_scene();
     inflation = inflate({});
   }
-  if (!inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure) {
-    // Layers and pieces pressed together by the growing avatar (a trouser cuff inside a
-    // shoe) can jam in a barrier thinner than their gap to each other: a wider one keeps
-    // them apart earlier, so that they move together.
-    double& dhat = report.parameters.solver.dhat;
-    progress.warn(
-        fmt::format("the inflation stalled with dhat {:.3g}: inflating again with "
-                    "a barrier twice as wide (--dhat {:.3g})",
-                    dhat, kStalledBarrierFactor * dhat));
-    dhat *= kStalledBarrierFactor;
-    solver_scene();
-    inflation = inflate({});
-  }
+  if (stalled() && !widened) inflate_wider("");
   if (!inflation.succeeded()) {
     solved.failure = {Outcome::kSolverFailure,
                       "inflation failed: " + inflation.message +

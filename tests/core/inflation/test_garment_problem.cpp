@@ -158,3 +158,42 @@ TEST_CASE("garment problem: the fit holds back only where a motion meets the ava
   inflation.hold_back(start, kept, fade);
   CHECK(kept == motion);
 }
+
+TEST_CASE("garment problem: tangle pairs pressed together are those modelled from the start",
+          "[garment_problem]") {
+  // A quad crossing a flap (faces 0-1 and 2-3), all in one tangle: vertex 6 lies on the quad
+  // from the start (its pairs are not modelled), vertex 7 lies 1e-3 above it.
+  GarmentScene scene;
+  scene.garment.vertices.resize(8, 3);
+  scene.garment.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5, 0.5, -0.2, 0.5, 0.5, 0.2, 0.3,
+      0.2, 0, 0.3, 0.7, 1e-3;
+  scene.garment.faces.resize(4, 3);
+  scene.garment.faces << 0, 1, 2, 0, 2, 3, 4, 5, 6, 5, 7, 6;
+  scene.avatar = icosphere(1, 0.1);
+  scene.avatar.vertices.rowwise() += RowVector3d(5.0, 5.0, 5.0);
+  scene.shrunk_avatar = scene.avatar.vertices;
+  RetargetParameters parameters;
+  parameters.dhat = 0.01;
+  const double gap = 0.01 * parameters.dhat;
+  MatrixX3d pressed = scene.garment.vertices;
+  pressed(7, 2) = 1e-6;
+
+  SECTION("without tangles nothing counts") {
+    CHECK(pressed_tangle_pairs(scene, parameters, pressed, gap) == 0);
+  }
+  scene.garment_tangles.assign(8, 0);
+  SECTION("as given, only the pairs left out from the start are that close") {
+    CHECK(pressed_tangle_pairs(scene, parameters, scene.garment.vertices, gap) == 0);
+  }
+  SECTION("vertex 7 pressed onto the quad") {
+    CHECK(pressed_tangle_pairs(scene, parameters, pressed, gap) >= 1);
+    // Lower than given, but every pair of vertex 7 (edge 6-7 over the quad's diagonal at a
+    // fifth of its height) further than the gap.
+    pressed(7, 2) = 8.0 * gap;
+    CHECK(pressed_tangle_pairs(scene, parameters, pressed, gap) == 0);
+  }
+  SECTION("in two tangles, the pair between them is not one tangle's") {
+    scene.garment_tangles = {0, 0, 0, 0, 1, 1, 1, 1};
+    CHECK(pressed_tangle_pairs(scene, parameters, pressed, gap) == 0);
+  }
+}
