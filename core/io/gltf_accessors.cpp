@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -18,6 +19,20 @@ const tinygltf::Accessor& accessor_at(const tinygltf::Model& model, int index,
   if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
     throw InputError(path, 0, fmt::format("{}: accessor {} does not exist", what, index));
   return model.accessors[static_cast<std::size_t>(index)];
+}
+
+/// glTF 2.0's component types; tinygltf also knows 32-bit signed integers and doubles,
+/// which the format leaves out.
+bool allowed_component_type(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return true;
+    default: return false;
+  }
 }
 
 /// Where the accessor's elements are: its first byte, its stride and element size, after
@@ -38,6 +53,11 @@ Span checked_span(const tinygltf::Model& model, int index, const std::string& pa
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
   if (components <= 0 || size <= 0)
     throw InputError(path, 0, fmt::format("{}: accessor {} has an invalid type", what, index));
+  if (!allowed_component_type(a.componentType))
+    throw InputError(path, 0,
+                     fmt::format("{}: accessor {} has component type {}, which glTF 2.0 does "
+                                 "not allow",
+                                 what, index, a.componentType));
   if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size())
     throw InputError(path, 0, fmt::format("{}: accessor {} has no valid buffer view", what, index));
   const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
@@ -89,7 +109,7 @@ double component(const unsigned char* p, int type, bool normalized) {
       const double v = load<std::int8_t>(p);
       return normalized ? std::max(v / 127.0, -1.0) : v;
     }
-    default: return load<double>(p);
+    default: throw std::logic_error("component type not checked by checked_span");
   }
 }
 

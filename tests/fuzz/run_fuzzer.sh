@@ -19,6 +19,8 @@ if [ ! -x "$binary" ] || [ "$newest_source" -nt "$binary" ]; then
     -I"$root" -isystem /usr/include/eigen3 -DGR_VERSION='"fuzz"' "${sources[@]}" -lfmt -ltinygltf -o "$binary"
 fi
 cp -n "$here"/corpus/* "$build/corpus/" 2>/dev/null || true
+# Crashes of earlier runs were copied into regressions/ already; this run reports its own.
+rm -f "$build"/artifacts/*
 status=0
 "$binary" "$build/corpus" -max_total_time="$seconds" -max_len=4096 -timeout=5 \
   -artifact_prefix="$build/artifacts/" -print_final_stats=1 || status=$?

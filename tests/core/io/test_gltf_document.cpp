@@ -221,6 +221,15 @@ TEST_CASE("Bad glTF input gives one clear InputError", "[io][gltf]") {
     broken["accessors"][position]["count"] = 4611686018427387904ULL;
     require_error(broken, "huge.gltf", "reaches past");
   }
+  SECTION("component type glTF does not allow") {
+    // Signed 32-bit integers and doubles are tinygltf's, not glTF's: a double would read 8
+    // bytes of a 4-byte element.
+    const int position = broken["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    for (const int type : {5124, 5130}) {
+      broken["accessors"][position]["componentType"] = type;
+      require_error(broken, "component.gltf", "component type " + std::to_string(type));
+    }
+  }
   SECTION("node cycle") {
     broken["nodes"][0]["children"] = {1};
     broken["nodes"].push_back({{"children", {0}}});
