@@ -387,8 +387,11 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   std::string summary = certify_summary(certificate, report, total.seconds());
   progress.log("certify", "{}", summary);
   Outcome status = report.certified() ? Outcome::kCertified : Outcome::kNotCertified;
-  if (report.certified() &&
-      !shape_violations(report.certify.shape, report.certify.shape_thresholds).empty()) {
+  const ShapeThresholds& thresholds = report.certify.shape_thresholds;
+  bool shape_changed = !shape_violations(report.certify.shape, thresholds).empty();
+  for (const ShapeChange& layer : certified_output.layer_shapes)
+    shape_changed = shape_changed || !shape_violations(layer, thresholds).empty();
+  if (report.certified() && shape_changed) {
     status = Outcome::kShapeChanged;
     summary += "; SHAPE CHANGED beyond its thresholds";
   }

@@ -82,6 +82,27 @@ TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order
   }
 }
 
+TEST_CASE("outfit: a layer whose own shape changed beyond a threshold flags the run",
+          "[pipeline][outfit]") {
+  const NestedSleeves scene =
+      test::write_nested_sleeves(test::fresh_temp_dir("outfit_layer_shape"));
+  RetargetOptions options = outfit_options(scene, {0, 1, 2});
+  const RetargetResult first = test::run_and_check(options);
+  REQUIRE(first.status == Outcome::kCertified);
+  REQUIRE(first.report.outfit.has_value());
+  const double whole = first.report.certify.shape.mean_edge_change;
+  double largest = 0.0;
+  for (const OutfitLayerReport& layer : first.report.outfit->layers)
+    largest = std::max(largest, layer.shape.mean_edge_change);
+  // A limit the outfit counted as one keeps to and one layer does not.
+  REQUIRE(largest > 1.01 * whole);
+  options.shape_thresholds.mean_edge_change = 0.5 * (whole + largest);
+  const RetargetResult second = test::run_and_check(options);
+  INFO(second.message);
+  CHECK(second.status == Outcome::kShapeChanged);
+  CHECK(second.report.certify.shape.mean_edge_change < options.shape_thresholds.mean_edge_change);
+}
+
 TEST_CASE("outfit: layers denser than twice the proxy are solved coarse to fine, certified",
           "[pipeline][outfit][coarse_to_fine]") {
   const NestedSleeves scene = test::write_nested_sleeves(test::fresh_temp_dir("outfit_proxy"));

@@ -151,6 +151,11 @@ CertifyOutput run_certify(const CertifyInput& input, const CertifyOptions& optio
       const TriangleMesh after =
           layer_mesh(input.normalized.garment, input.garment, face_layer, static_cast<int>(k));
       out.layer_shapes.push_back(measure_shape_change(before, after.vertices));
+      // A layer destroyed under an outfit whose edges, counted together, changed little.
+      for (const std::string& violation :
+           shape_violations(out.layer_shapes.back(), report.shape_thresholds))
+        progress.warn(
+            fmt::format("{}: shape changed beyond its threshold: {}", layer.name, violation));
       inputs.push_back({{"name", layer.name},
                         {"path", layer.path},
                         {"mesh", layer.mesh},
