@@ -147,6 +147,32 @@ void move_layer(const Eigen::Matrix4d& to_first_frame, GarmentLayer& layer, Simu
         (to_first * Vector3d(sim.mesh.vertices.row(v).transpose())).transpose();
 }
 
+/// Throws when `layer` lies where an earlier layer does, the same faces at the same places:
+/// a garment given twice. Its crossings with itself would be the whole surface, which
+/// leaves nothing to keep the two apart.
+void require_not_repeated(const GarmentLayer& layer, const std::vector<GarmentLayer>& earlier) {
+  const MatrixX3d& positions = layer.document.positions;
+  if (positions.rows() == 0) return;
+  const double size = (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).norm();
+  constexpr double kSamePlace = 1e-9;  // of the garment's diagonal
+  for (const GarmentLayer& other : earlier) {
+    const MatrixX3d& theirs = other.document.positions;
+    if (theirs.rows() != positions.rows() ||
+        other.document.faces.size() != layer.document.faces.size())
+      continue;
+    bool same_faces = true;
+    for (std::size_t f = 0; f < layer.document.faces.size() && same_faces; ++f)
+      for (std::size_t c = 0; c < 3; ++c)
+        same_faces = same_faces &&
+                     layer.document.faces[f][c].position == other.document.faces[f][c].position;
+    if (same_faces && (theirs - positions).cwiseAbs().maxCoeff() <= kSamePlace * size)
+      throw InputError(layer.path, 0,
+                       fmt::format("garment '{}' lies exactly where garment '{}' does (the same "
+                                   "mesh given twice?): give each garment once",
+                                   layer.name, other.name));
+  }
+}
+
 /// A layer's file stem (GarmentLayer::file_stem), unique among `taken`.
 std::string layer_file_stem(const std::string& name, std::set<std::string>& taken) {
   std::string base;
@@ -303,6 +329,7 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
             frame_onto(read_skeleton(more.source_skeleton), *first_skeleton, more.source_skeleton);
       }
       if (to_first_frame) move_layer(*to_first_frame, layer, sim);
+      require_not_repeated(layer, scene.layers);
     }
     layer.first_position = static_cast<int>(scene.garment_document.positions.rows());
     layer.first_face = static_cast<int>(scene.garment_document.faces.size());

@@ -156,6 +156,24 @@ TEST_CASE("outfit: a given layer order is used, and one the result contradicts i
   CHECK_THROWS_AS(run_retarget(options), InputError);
 }
 
+TEST_CASE("outfit: a garment given twice is refused before the solve, nothing written",
+          "[pipeline][outfit]") {
+  const NestedSleeves scene = test::write_nested_sleeves(test::fresh_temp_dir("outfit_twice"));
+  RetargetOptions options = outfit_options(scene, {0, 1, 0});
+  REQUIRE_THROWS_WITH(run_retarget(options), Catch::Contains("lies exactly where garment") &&
+                                                 Catch::Contains("given twice"));
+  CHECK_FALSE(std::filesystem::exists(scene.dir / "out"));
+  // A copy moved by a hair of its size is another garment (here: crossing the first).
+  options = outfit_options(scene, {0, 1});
+  const ObjDocument inner = read_obj(scene.sleeves[0]);
+  ObjDocument moved = inner;
+  moved.positions.col(0).array() += 1e-6;
+  const std::filesystem::path copy = scene.dir / "inner_moved.obj";
+  write_obj(copy.string(), moved, moved.positions);
+  options.inputs.more_garments.push_back({copy.string()});
+  CHECK_NOTHROW(load_scene(options.inputs));
+}
+
 }  // namespace gr
 
 namespace gr {
