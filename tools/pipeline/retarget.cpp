@@ -195,20 +195,19 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
   // Layers and pieces pressed together by the growing avatar (a trouser cuff inside a
   // shoe) can jam in a barrier thinner than their gap to each other: a wider one keeps
   // them apart earlier, so that they move together.
-  bool widened = false;
+  double& dhat = report.parameters.solver.dhat;
+  const double first_dhat = dhat;
   const auto inflate_wider = [&](const std::string& why) {
-    double& dhat = report.parameters.solver.dhat;
     progress.warn(
         fmt::format("the inflation stalled with dhat {:.3g}{}: inflating again with "
                     "a barrier twice as wide (--dhat {:.3g})",
                     dhat, why, kStalledBarrierFactor * dhat));
     dhat *= kStalledBarrierFactor;
-    widened = true;
     solver_scene();
     inflation = inflate({});
   };
   // A crossing the input came with cannot slide: jammed there, the garment needs the wider
-  // barrier, and a thinner avatar would only stall again.
+  // barrier first, before a thinner avatar.
   if (stalled()) {
     const int pressed = pressed_tangle_pairs(solver.scene, parameters, inflation.garment,
                                              kPressedGap * parameters.dhat);
@@ -217,6 +216,9 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
           fmt::format(", {} pairs pressed together at crossings the input came with", pressed));
   }
   if (stalled() && in.shrink_options.mode == ShrinkMode::kSkeleton) {
+    // The thinner avatar is tried in the barrier the garment first stalled in, then in the
+    // wider one below, whichever came first.
+    dhat = first_dhat;
     const double pullback = kStalledPullbackFactor * shrink.shrunk.pullback;
     const std::string no_thinner =
         run_thinner_shrink(in.shrink_input, in.shrink_options, pullback, shrink, progress);
@@ -232,7 +234,7 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
     solver_scene();
     inflation = inflate({});
   }
-  if (stalled() && !widened) inflate_wider("");
+  if (stalled() && dhat == first_dhat) inflate_wider("");
   if (!inflation.succeeded()) {
     solved.failure = {Outcome::kSolverFailure,
                       "inflation failed: " + inflation.message +
