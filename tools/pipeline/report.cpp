@@ -40,7 +40,7 @@ nlohmann::json to_json(const LayerOrderReport& r) {
           {"out_of_order", r.out_of_order}};
 }
 
-nlohmann::json to_json(const OutfitReport& r) {
+nlohmann::json to_json(const OutfitReport& r, const ShapeThresholds& thresholds) {
   nlohmann::json layers = nlohmann::json::array();
   for (const OutfitLayerReport& l : r.layers)
     layers.push_back({{"name", l.name},
@@ -49,11 +49,7 @@ nlohmann::json to_json(const OutfitReport& r) {
                       {"faces", l.faces},
                       {"written", l.written},
                       {"written_mesh", l.written_mesh},
-                      {"shape",
-                       {{"scale", l.shape.scale},
-                        {"mean_edge_change", l.shape.mean_edge_change},
-                        {"p95_edge_change", l.shape.p95_edge_change},
-                        {"area_change", l.shape.area_change}}}});
+                      {"shape", shape_report(l.shape, thresholds)}});
   return {{"layers", layers},
           {"order", r.order},
           {"order_from", r.order_from},
@@ -241,7 +237,7 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"meaning",
        "edges shared by more than two faces: the faces beyond the first two took tied copies "
        "of the edge's vertices for the solver; the written file welds them back"}};
-  if (r.outfit) report["outfit"] = to_json(*r.outfit);
+  if (r.outfit) report["outfit"] = to_json(*r.outfit, r.certify.shape_thresholds);
   if (!r.shrink.conflict.is_null()) report["shrink_conflict"] = r.shrink.conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;
   return report;

@@ -223,7 +223,8 @@ struct RetargetReport {
 };
 
 nlohmann::json to_json(const RetargetReport& report);
-nlohmann::json to_json(const OutfitReport& report);
+/// Each layer's shape as shape_report gives it: measured against `thresholds`.
+nlohmann::json to_json(const OutfitReport& report, const ShapeThresholds& thresholds);
 nlohmann::json to_json(const LayerOrderReport& report);
 
 /// Peak resident memory of this process so far, MiB.

@@ -101,6 +101,18 @@ TEST_CASE("outfit: a layer whose own shape changed beyond a threshold flags the 
   INFO(second.message);
   CHECK(second.status == Outcome::kShapeChanged);
   CHECK(second.report.certify.shape.mean_edge_change < options.shape_thresholds.mean_edge_change);
+  // report.json names the layer beyond the limit, and only layers beyond it.
+  const nlohmann::json report =
+      nlohmann::json::parse(std::ifstream(scene.dir / "out" / "report.json"));
+  int beyond = 0;
+  for (const nlohmann::json& layer : report["outfit"]["layers"]) {
+    const bool within = layer["shape"]["within_thresholds"].get<bool>();
+    CHECK(within == (layer["shape"]["mean_edge_change"].get<double>() <=
+                     options.shape_thresholds.mean_edge_change));
+    beyond += within ? 0 : 1;
+  }
+  CHECK(beyond >= 1);
+  CHECK(report["shape"]["within_thresholds"].get<bool>());
 }
 
 TEST_CASE("outfit: layers denser than twice the proxy are solved coarse to fine, certified",
