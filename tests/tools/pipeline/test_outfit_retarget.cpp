@@ -175,10 +175,9 @@ TEST_CASE("outfit: a garment given twice is refused before the solve, nothing wr
   REQUIRE_THROWS_WITH(run_retarget(options), Catch::Contains("lies exactly where garment") &&
                                                  Catch::Contains("given twice"));
   CHECK_FALSE(std::filesystem::exists(scene.dir / "out"));
-  // A copy moved by a hair of its size is another garment (here: crossing the first).
+  // A copy moved by a hair of its size is another garment.
   options = outfit_options(scene, {0, 1});
-  const ObjDocument inner = read_obj(scene.sleeves[0]);
-  ObjDocument moved = inner;
+  ObjDocument moved = read_obj(scene.sleeves[0]);
   moved.positions.col(0).array() += 1e-6;
   const std::filesystem::path copy = scene.dir / "inner_moved.obj";
   write_obj(copy.string(), moved, moved.positions);
