@@ -7,12 +7,16 @@
   well for files under docs/ (the site is built from there). MkDocs' own strict build does
   not see README.md, which lies outside its docs_dir.
 - Every `garment-retarget COMMAND ...` line of a shell code block (also run through a
-  path, such as `build/tools/garment-retarget`; lines continued with a backslash are one
+  path, such as `build/app/garment-retarget`; lines continued with a backslash are one
   command) must name a command the program has, and each `--option` it names must appear
   in `garment-retarget COMMAND --help`. A pattern such as `--binding-*` must match one.
+- The folder table of docs/layout.md and the folder list of the README's "Where things
+  live" name every top-level folder of the repository, in the same order, and each
+  subfolder a row names (`stages/`) exists in it. The table's order is the dependency
+  order: no C++ file includes (`#include "folder/..."`) from a folder listed after its own.
 
 Prints one line per problem and exits with 1 if there is any, 0 otherwise.
-Usage: tools/check_docs.py --binary build/tools/garment-retarget [--root DIR]
+Usage: tools/check_docs.py --binary build/app/garment-retarget [--root DIR]
 """
 
 import argparse
@@ -36,6 +40,13 @@ HTML_LINK = re.compile(r"<(?:a|img)\b[^>]*?\b(?:href|src)\s*=\s*\"([^\"]+)\"", r
 INLINE_CODE = re.compile(r"(`+)(?:.+?)\1", re.S)
 HELP_OPTION = re.compile(r"^  (?:-\w,\s?)?(--\w[\w-]*)")
 HELP_SUBCOMMAND = re.compile(r"^  (\w[\w-]*)\s")
+LAYOUT_ROW = re.compile(r"^\| `([\w.-]+)/` \|(.*)$", re.M)
+README_FOLDER = re.compile(r"^- `([\w.-]+)/`:", re.M)
+SUBFOLDER = re.compile(r"`([\w.-]+)/`")
+PROJECT_INCLUDE = re.compile(r'^\s*#\s*include\s+"([\w.-]+)/', re.M)
+SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".cc")
+# Folders whose files may include from any other: the tests and the documentation.
+UNRANKED = {"tests", "docs", "tools"}
 
 
 def split_markdown(text):
@@ -264,7 +275,60 @@ class Checker:
                     self.check_command(path, line, tokens[i + 1:])
                 return
 
+    def top_level_folders(self):
+        """Folders at the repository's top that hold tracked files (all but hidden ones
+        and build output when git is not there)."""
+        try:
+            listed = subprocess.run(["git", "-C", self.root, "ls-files"], capture_output=True,
+                                    text=True, check=True).stdout.split("\n")
+            return {path.split("/")[0] for path in listed if "/" in path and not path.startswith(".")}
+        except (OSError, subprocess.CalledProcessError):
+            return {name for name in os.listdir(self.root)
+                    if os.path.isdir(os.path.join(self.root, name))
+                    and not name.startswith((".", "build", "out", "site"))}
+
+    def check_layout(self):
+        layout = os.path.join(self.docs, "layout.md")
+        readme = os.path.join(self.root, "README.md")
+        if not os.path.isfile(layout):
+            return
+        with open(layout, encoding="utf-8") as f:
+            rows = [(m.group(1), m.group(2), line_of(m.string, m.start())) for m in LAYOUT_ROW.finditer(f.read())]
+        with open(readme, encoding="utf-8") as f:
+            listed = README_FOLDER.findall(f.read())
+        actual = self.top_level_folders()
+        table = [name for name, _, _ in rows]
+        for name in sorted(actual - set(table)):
+            self.problem(layout, 1, f"the folder table does not name top-level folder {name}/")
+        for name, text, line in rows:
+            folder = os.path.join(self.root, name)
+            if name not in actual:
+                self.problem(layout, line, f"{name}/ is not a top-level folder")
+                continue
+            for sub in SUBFOLDER.findall(text):
+                if not any(sub in dirs for _, dirs, _ in os.walk(folder)):
+                    self.problem(layout, line, f"{name}/ has no subfolder {sub}/")
+        if listed != table:
+            self.problem(readme, 1, "the folders of 'Where things live' differ from docs/layout.md's table: "
+                         f"{', '.join(listed)} against {', '.join(table)}")
+        self.check_includes([name for name in table if name not in UNRANKED])
+
+    def check_includes(self, ranked):
+        rank = {name: i for i, name in enumerate(ranked)}
+        for name in ranked:
+            for folder, _, names in os.walk(os.path.join(self.root, name)):
+                for source in sorted(n for n in names if n.endswith(SOURCE_SUFFIXES)):
+                    path = os.path.join(folder, source)
+                    with open(path, encoding="utf-8", errors="replace") as f:
+                        text = f.read()
+                    for match in PROJECT_INCLUDE.finditer(text):
+                        target = match.group(1)
+                        if rank.get(target, -1) > rank[name]:
+                            self.problem(path, line_of(text, match.start()),
+                                         f"{name}/ includes from {target}/, listed after it in docs/layout.md")
+
     def run(self):
+        self.check_layout()
         for path in self.markdown_files():
             with open(path, encoding="utf-8") as f:
                 prose, blocks = split_markdown(f.read())

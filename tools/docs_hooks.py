@@ -1,7 +1,7 @@
-"""MkDocs hook: the site carries tools/bench/results/ too.
+"""MkDocs hook: the site carries bench/results/ too.
 
-The benchmarks write their dated results into tools/bench/results/, outside docs_dir, and
-the pages link there with paths relative to the repository (`../tools/bench/results/...`),
+The benchmarks write their dated results into bench/results/, outside docs_dir, and
+the pages link there with paths relative to the repository (`../bench/results/...`),
 which also resolve when the Markdown is read in the repository itself. This hook adds
 those files to the site at the same place, so that MkDocs can check the links and the
 built site serves their targets.
@@ -12,7 +12,7 @@ import posixpath
 
 from mkdocs.structure.files import File, InclusionLevel
 
-RESULTS = "tools/bench/results"
+RESULTS = "bench/results"
 
 
 def on_files(files, config):

@@ -18,9 +18,9 @@ fi
 case "${1:-}" in
   run)
     cmake --build "$build" --target garment-retarget -j "$jobs"
-    scene="$root/tools/scenes/dress_form"
+    scene="$root/scenes/dress_form"
     out="$root/out/dress_form"
-    "$build/tools/garment-retarget" retarget \
+    "$build/app/garment-retarget" retarget \
       --garment "$scene/garment.obj" --avatar "$scene/avatar.obj" \
       --no-fit "$scene/no-fit.txt" --out "$out"
     echo "results in $out"

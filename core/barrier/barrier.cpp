@@ -9,7 +9,7 @@ namespace {
 
 /// The natural logarithm, the same to the bit on every x86-64 CPU: glibc's log has an FMA
 /// variant, chosen at run time, that differs by an ulp on some arguments, and the barrier's
-/// rounding carries into the garment (tools/bench/results/parameter_choices.md). SLEEF's
+/// rounding carries into the garment (bench/results/parameter_choices.md). SLEEF's
 /// portable C build, within 1.0 ulp.
 double portable_log(double x) { return Sleef_cinz_logd1_u10purec(x); }
 

@@ -101,7 +101,7 @@ class GarmentProblem : public Problem {
   bool goal_reached(const Eigen::VectorXd& x) override;
   /// How close to 1 t must be for goal_reached to try the snap: where eta = 1 - sqrt(1 - t)
   /// reaches eta_target. A wider window saves inflation steps but leaves the fit more to do
-  /// and ends farther from the body (tools/bench/results/parameter_choices.md).
+  /// and ends farther from the body (bench/results/parameter_choices.md).
   double snap_window() const {
     return (1.0 - parameters_.eta_target) * (1.0 - parameters_.eta_target);
   }

@@ -30,12 +30,12 @@ struct RetargetParameters {
   /// renewed every augmented-Lagrangian round). Without it the inflation's minimum puts a
   /// free-floating garment anywhere clear of the body; too weak, steps creep at the trust
   /// radius; too strong, it holds the garment against the avatar's push so that t stalls
-  /// (tools/bench/results/parameter_choices.md).
+  /// (bench/results/parameter_choices.md).
   double w_tether = 0.01;
   /// With skeletons, in the fit: edge stretch against the input garment scaled to the
   /// inflated garment's median edge ratio (StretchEnergy), so the fit keeps the pattern
   /// and leaves the size to the inflation and L_pos; stronger keeps the pattern better and
-  /// fits less close (tools/bench/results/parameter_choices.md).
+  /// fits less close (bench/results/parameter_choices.md).
   double w_fit_stretch = 0.03;
   /// The ties holding the copies of a split non-manifold edge on their originals
   /// (TieEnergy): stiff against the shape and fit terms, so that the copies stay close and
@@ -75,7 +75,7 @@ struct RetargetParameters {
   }();
   /// The inflation's cap on a Newton step's vertex motion (instead of newton's). Small
   /// steps keep the garment following the growing avatar rather than jumping ahead of it
-  /// and catching on it (tools/bench/results/parameter_choices.md).
+  /// and catching on it (bench/results/parameter_choices.md).
   double inflation_step_length = 0.025;
   CcdOptions ccd;
 

@@ -211,7 +211,7 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     // prediction for that same step, also when the line search cut it. Counting a cut step
     // as a failed prediction instead raised mu on every cut, and more on each in a row
     // (Nielsen's nu), and near contact, where pairs entering the barrier cut steps often,
-    // the steps crept (tools/bench/results/parameter_choices.md).
+    // the steps crept (bench/results/parameter_choices.md).
     if (accepted) {
       const double predicted = -(alpha * slope + 0.5 * alpha * alpha * curvature);
       update_damping(predicted > 0.0 ? (energy - trial_energy) / predicted : 0.0);

@@ -42,7 +42,7 @@ struct NewtonOptions {
   /// Trust radius: a damped step that would move anything further than this
   /// (Problem::step_length) is scaled down to it before CCD. Raising the damping until the
   /// step fits instead turns the steps towards gradient descent, which jams against
-  /// contact (tools/bench/results/parameter_choices.md).
+  /// contact (bench/results/parameter_choices.md).
   double max_step_length = std::numeric_limits<double>::infinity();
   /// Halvings of the step in the line search before giving up with kNoDescent.
   int max_line_search_halvings = 50;
@@ -60,7 +60,7 @@ struct NewtonOptions {
   /// scaled system's condition number stays below about 1e10 (a few dozen nonzeros per row
   /// over 1e-8), so rounding moves the step by about 1e-6 of itself, continuously, and the
   /// converged point is unaffected (the damping vanishes with the gradient). A higher floor
-  /// can steer the path away from the undamped one (tools/bench/results/
+  /// can steer the path away from the undamped one (bench/results/
   /// parameter_choices.md).
   double min_damping = 1e-8;
   double max_damping = 1e12;
@@ -83,7 +83,7 @@ struct NewtonOptions {
   double reuse_tolerance = 1e-3;
   /// Conjugate-gradient iterations before a new factorization is preferred: each costs a
   /// pair of triangular solves, and a dense garment's factorization costs a few dozen of
-  /// them (tools/bench/results/dense.md).
+  /// them (bench/results/dense.md).
   int reuse_max_iterations = 12;
 };
 

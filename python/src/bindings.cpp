@@ -14,14 +14,14 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include "app/batch/batch_run.hpp"
+#include "app/cli/commands.hpp"
 #include "core/common/errors.hpp"
 #include "core/io/obj_document.hpp"
-#include "tools/batch/batch_run.hpp"
-#include "tools/cli/commands.hpp"
-#include "tools/pipeline/outcome.hpp"
-#include "tools/pipeline/parameters.hpp"
-#include "tools/pipeline/retarget.hpp"
-#include "tools/pipeline/run_control.hpp"
+#include "retarget/outcome.hpp"
+#include "retarget/parameters.hpp"
+#include "retarget/retarget.hpp"
+#include "retarget/run/run_control.hpp"
 
 namespace nb = nanobind;
 

@@ -13,7 +13,7 @@ struct SkeletonShrinkOptions {
   /// target bone: not zero, so no triangle collapses exactly onto a bone; small, so the
   /// shrunk avatar stays near the bones and leaves the garment room between body parts.
   /// Larger, the inflation has less far to go and takes fewer Newton steps, until the
-  /// garment is caught between body parts as they grow (tools/bench/results/
+  /// garment is caught between body parts as they grow (bench/results/
   /// parameter_choices.md). The pipeline inflates again from a fifth of the pullback when
   /// the inflation stalls.
   double pullback = 0.25;

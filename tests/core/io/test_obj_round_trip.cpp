@@ -120,7 +120,7 @@ TEST_CASE("welding merges bit-identical positions and keeps the maps", "[io][mes
 
 TEST_CASE("atomic writes leave no file when the folder is missing", "[io][atomic]") {
   const auto dir = gr::test::fresh_temp_dir("atomic");
-  gr::ObjDocument doc = gr::read_obj(gr::test::project_file("tools/scenes/dress_form/garment.obj"));
+  gr::ObjDocument doc = gr::read_obj(gr::test::project_file("scenes/dress_form/garment.obj"));
   const auto target = dir / "missing_folder" / "out.obj";
   CHECK_THROWS(gr::write_obj(target.string(), doc, doc.positions));
   CHECK_FALSE(std::filesystem::exists(target));
