@@ -1,0 +1,71 @@
+#include "retarget/stage_reports.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gr {
+
+void record_inputs(RetargetReport& report, const ReadOutput& read, const NormalizeOutput& normalize,
+                   const InferOutput& inferred) {
+  report.estimated_memory_mb = read.estimated_memory_mb;
+  report.shrink.mode = read.shrink_mode;
+  report.seconds.read = read.seconds;
+  report.normalize = normalize.report;
+  report.seconds.normalize = normalize.seconds;
+  report.inferred = inferred.inferred;
+  report.ease = inferred.ease;
+}
+
+void record_shrink(RetargetReport& report, const ShrinkOutput& shrink,
+                   const InferOutput& inferred) {
+  const nlohmann::json conflict = report.shrink.conflict;
+  report.shrink = shrink.report;
+  report.shrink.conflict = conflict;
+  report.seconds.shrink = inferred.binding_seconds + shrink.seconds;
+}
+
+void record_modelled(RetargetReport& report, const SolverScene& solver) {
+  const RetargetParameters& parameters = report.parameters.solver;
+  report.fit.fit_faces =
+      static_cast<int>(std::count(solver.fit_faces.begin(), solver.fit_faces.end(), true));
+  report.fit.avatar_faces_modelled = solver.avatar_faces_modelled;
+  report.fit.self_contact = parameters.self_contact;
+  report.fit.self_contact_everywhere = parameters.self_contact_everywhere;
+}
+
+void record_written(RetargetReport& report, const WriteOutput& written) {
+  report.shrink.pierced.opened_document_faces = written.opened_document_faces;
+  report.skin = written.skin;
+  report.seconds.write = written.seconds;
+}
+
+void record_certified(RetargetReport& report, const CertifyOutput& certified) {
+  report.certify = certified.report;
+  report.seconds.certify = certified.seconds;
+  if (report.ease.source_known) {
+    report.ease.measure = certified.ease;
+    report.ease.document_ratio = certified.ease_document_ratio;
+  }
+  report.normalize.inherited.still_crossing = certified.inherited_still_crossing;
+  // The solver sees only pairs within dhat; a garment that ended further away takes the
+  // certificate's clearance, so the report never holds an infinity.
+  if (!std::isfinite(report.fit.min_distance))
+    report.fit.min_distance =
+        certified.certificate.validation.result.totals().smallest_avatar_clearance *
+        report.normalize.scene_scale;
+}
+
+void record_outfit(RetargetReport& report, OutfitReport outfit, const Scene& scene,
+                   const WriteOutput& written, const std::vector<std::string>& recorded_paths,
+                   const CertifyOutput& certified) {
+  for (std::size_t k = 0; k < scene.layers.size(); ++k) {
+    const GarmentLayer& layer = scene.layers[k];
+    outfit.layers.push_back({layer.name, layer.path, layer.mesh, layer.face_count,
+                             recorded_paths[k], written.garments[k].mesh,
+                             certified.layer_shapes[k]});
+  }
+  report.seconds.certify += outfit.seconds;
+  report.outfit = std::move(outfit);
+}
+
+}  // namespace gr
