@@ -207,36 +207,9 @@ nlohmann::json to_json(const RetargetReport& r) {
        "ease: a fitted vertex's distance to the body. ratio: on the written garment, its "
        "distance to the avatar over the garment's median edge ratio, against its distance to "
        "the source body; per_vertex_ratio in OBJ vertex order, null where not measured"}};
-  nlohmann::json pairs = nlohmann::json::array();
-  for (const FacePair& p : r.normalize.inherited.document_pairs)
-    pairs.push_back({p.first, p.second});
-  report["inherited_crossings"] = {
-      {"pairs", r.normalize.inherited.pairs},
-      {"still_crossing", r.normalize.inherited.still_crossing},
-      {"tangles", r.normalize.inherited.tangles},
-      {"tangled_vertices", r.normalize.inherited.tangled_vertices},
-      {"attached_pieces", r.normalize.inherited.attached_pieces},
-      {"face_pairs", pairs},
-      {"meaning",
-       "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
-       "they are, their neighbourhood left out of self contact; the certificate counts them "
-       "apart and fails only on new ones"}};
-  report["pierced_faces"] = {
-      {"shrinks", r.shrink.pierced.shrinks},
-      {"bones", r.shrink.pierced.bones},
-      {"left_out_of_contact", r.shrink.pierced.document_faces},
-      {"opened", r.shrink.pierced.opened_document_faces},
-      {"meaning",
-       "garment faces (0-based input faces) the avatar passes through as given, such as a cap "
-       "around a bone: left out of the garment-avatar contact so that the avatar can shrink "
-       "free of the rest; those the avatar still passes through at the end are opened, "
-       "left out of the written file"}};
-  report["split_non_manifold_edges"] = {
-      {"edges", r.normalize.split_edges},
-      {"vertex_copies", r.normalize.split_copies},
-      {"meaning",
-       "edges shared by more than two faces: the faces beyond the first two took tied copies "
-       "of the edge's vertices for the solver; the written file welds them back"}};
+  report["split_non_manifold_edges"] = to_json(r.repairs.non_manifold);
+  report["inherited_crossings"] = to_json(r.repairs.crossings);
+  report["pierced_faces"] = to_json(r.repairs.pierced);
   if (r.outfit) report["outfit"] = to_json(*r.outfit, r.certify.shape_thresholds);
   if (!r.shrink.conflict.is_null()) report["shrink_conflict"] = r.shrink.conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;

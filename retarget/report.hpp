@@ -10,6 +10,9 @@
 #include "core/solver/guide_path.hpp"
 #include "garment/fit/ease.hpp"
 #include "garment/fit/fit_error.hpp"
+#include "garment/repairs/inherited_crossings.hpp"
+#include "garment/repairs/non_manifold_edges.hpp"
+#include "garment/repairs/pierced_faces.hpp"
 #include "retarget/parameters.hpp"
 #include "retarget/scene/inferred_inputs.hpp"
 #include "retarget/scene/shrink_avatar.hpp"
@@ -47,34 +50,20 @@ struct EaseReport {
   std::vector<double> document_ratio;
 };
 
-/// The crossings of the garment with itself as given, kept as inherited.
-struct InheritedReport {
-  int pairs = 0;                         ///< crossing face pairs of the input
-  int tangles = 0;                       ///< groups of crossings, each left out of self contact
-  int tangled_vertices = 0;              ///< vertices in them
-  int still_crossing = 0;                ///< of the pairs, those the written garment still has
-  int attached_pieces = 0;               ///< pieces crossing another piece, attached to it
-  std::vector<FacePair> document_pairs;  ///< the pairs as input face ids (0-based)
+/// The input repairs (the prepare stage), each a section of report.json of its own.
+struct RepairsReport {
+  NonManifoldReport non_manifold;  ///< `split_non_manifold_edges`
+  InheritedReport crossings;       ///< `inherited_crossings`, with the pieces attached
+  PiercedReport pierced;  ///< `pierced_faces` (left out in the shrink, opened in the write)
 };
 
-/// Garment faces the avatar passes through as given (RetargetOptions::open_pierced_faces).
-struct PiercedReport {
-  int shrinks = 0;                  ///< shrinks tried until one was free of the rest of the garment
-  std::vector<int> document_faces;  ///< left out of the avatar contact, input face ids
-  std::vector<std::string> bones;   ///< source bones through garment faces, "a-b"
-  std::vector<int> opened_document_faces;  ///< left out of the written file, input face ids
-};
-
-/// Normalize: the scene in normalized units, and what the garment brought as given.
+/// Normalize: the scene in normalized units.
 struct NormalizeReport {
   double scene_scale = 1.0;  ///< normalized units per avatar file unit
   double lattice = 0.0;      ///< normalized coordinates are multiples of this (0: exact)
   int garment_vertices = 0;
   int garment_faces = 0;
   int avatar_faces_total = 0;
-  int split_edges = 0;   ///< garment edges of more than two faces, split for the solver
-  int split_copies = 0;  ///< vertex copies the split made (welded back in the written file)
-  InheritedReport inherited;
 };
 
 /// Shrink: the shrunk avatar the inflation starts from.
@@ -87,7 +76,6 @@ struct ShrinkReport {
   /// skeleton: the inflation stalled from the first shrunk avatar and ran again from a
   /// thinner one
   bool thinned = false;
-  PiercedReport pierced;
   /// After no valid shrink: the closest shrunk avatar written and the faces still crossing
   /// (write_closest_shrink); null otherwise.
   nlohmann::json conflict;
@@ -208,6 +196,7 @@ struct RetargetReport {
   std::string previous_result;
 
   NormalizeReport normalize;
+  RepairsReport repairs;
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
   ShrinkReport shrink;

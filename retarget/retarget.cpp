@@ -174,20 +174,20 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Scene& scene = read.scene;
   const std::vector<int> given_order = resolve_layer_order(scene, options.layer_order);
   mark_skirts(scene, options.skirt, options.skirt_layers);
-  const NormalizeOutput normalize = run_normalize(
+  const PrepareOutput prepared = run_prepare(
       {scene, options.inputs}, {std::min(parameters.dhat, parameters.fit_support())}, progress);
-  const NormalizedScene& normalized = normalize.normalized;
+  const NormalizedScene& normalized = prepared.normalized;
   double& min_separation = report.parameters.solver.ccd.min_separation;
-  min_separation = std::max(min_separation, normalize.ccd_min_separation);
+  min_separation = std::max(min_separation, prepared.ccd_min_separation);
   const InferOutput inferred = run_infer(
       {scene, normalized, options.inputs, read.shrink_mode},
       {options.inference, options.fit_mode, run.out().string(), report.parameters.voxel_size},
       progress);
   scene.no_fit = inferred.no_fit;
-  record_inputs(report, read, normalize, inferred);
+  record_inputs(report, read, prepared, inferred);
   run.record_inferred_files();
 
-  const ShrinkInput shrink_input{scene, normalized, inferred.skin_weights};
+  const ShrinkInput shrink_input{scene, normalized, inferred.skin_weights, prepared.pierced};
   const ShrinkOptions shrink_options{read.shrink_mode, report.parameters.voxel_size,
                                      report.ease.distance_band, report.parameters.skeleton_pullback,
                                      options.open_pierced_faces};
@@ -197,7 +197,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
     return run.no_valid_shrink(*shrink.failure, scene, normalized, read.shrink_mode);
   const GridDistanceField distance_field(shrink.grid);
   const SolveOutput solved =
-      run_solve({scene, normalized, normalize.inherited, shrink_input, shrink_options,
+      run_solve({scene, normalized, prepared.inherited, shrink_input, shrink_options,
                  distance_field, inferred, run.frame_writer(scene, normalized)},
                 shrink, report, progress);
   if (solved.failure) return run.finish(solved.failure->first, solved.failure->second);
@@ -224,7 +224,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   if (scene.layers.size() > 1) {
     const OutfitOutput outfit = run_outfit(
         {scene, normalized, garment, inferred.source_body ? &*inferred.source_body : nullptr,
-         certified.certificate, tangled_faces(normalized.garment, normalize.inherited),
+         certified.certificate, tangled_faces(normalized.garment, prepared.inherited),
          run.out().string(), options.out_dir},
         {given_order, options.write_avatar, parameters.dhat, {}}, progress);
     record_outfit(report, outfit.report, scene, written, files.recorded, certified);

@@ -5,13 +5,14 @@
 
 namespace gr {
 
-void record_inputs(RetargetReport& report, const ReadOutput& read, const NormalizeOutput& normalize,
+void record_inputs(RetargetReport& report, const ReadOutput& read, const PrepareOutput& prepare,
                    const InferOutput& inferred) {
   report.estimated_memory_mb = read.estimated_memory_mb;
   report.shrink.mode = read.shrink_mode;
   report.seconds.read = read.seconds;
-  report.normalize = normalize.report;
-  report.seconds.normalize = normalize.seconds;
+  report.normalize = prepare.report;
+  report.repairs = prepare.repairs;
+  report.seconds.normalize = prepare.seconds;
   report.inferred = inferred.inferred;
   report.ease = inferred.ease;
 }
@@ -21,6 +22,9 @@ void record_shrink(RetargetReport& report, const ShrinkOutput& shrink,
   const nlohmann::json conflict = report.shrink.conflict;
   report.shrink = shrink.report;
   report.shrink.conflict = conflict;
+  report.repairs.pierced.shrinks = shrink.pierced.shrinks;
+  report.repairs.pierced.bones = shrink.pierced.bones;
+  report.repairs.pierced.document_faces = shrink.pierced.document_faces;
   report.seconds.shrink = inferred.binding_seconds + shrink.seconds;
 }
 
@@ -34,7 +38,7 @@ void record_modelled(RetargetReport& report, const SolverScene& solver) {
 }
 
 void record_written(RetargetReport& report, const WriteOutput& written) {
-  report.shrink.pierced.opened_document_faces = written.opened_document_faces;
+  report.repairs.pierced.opened_document_faces = written.opened_document_faces;
   report.skin = written.skin;
   report.seconds.write = written.seconds;
 }
@@ -46,7 +50,7 @@ void record_certified(RetargetReport& report, const CertifyOutput& certified) {
     report.ease.measure = certified.ease;
     report.ease.document_ratio = certified.ease_document_ratio;
   }
-  report.normalize.inherited.still_crossing = certified.inherited_still_crossing;
+  report.repairs.crossings.still_crossing = certified.inherited_still_crossing;
   // The solver sees only pairs within dhat; a garment that ended further away takes the
   // certificate's clearance, so the report never holds an infinity.
   if (!std::isfinite(report.fit.min_distance))

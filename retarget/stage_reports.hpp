@@ -6,8 +6,8 @@
 #include "retarget/report.hpp"
 #include "retarget/stages/certify_stage.hpp"
 #include "retarget/stages/infer_stage.hpp"
-#include "retarget/stages/normalize_stage.hpp"
 #include "retarget/stages/outfit_stage.hpp"
+#include "retarget/stages/prepare_stage.hpp"
 #include "retarget/stages/read_stage.hpp"
 #include "retarget/stages/shrink_stage.hpp"
 #include "retarget/stages/solver_scene.hpp"
@@ -17,8 +17,8 @@ namespace gr {
 
 /// Each stage's output recorded into its part of the run's report.
 
-/// The report parts of the read, normalize and infer stages.
-void record_inputs(RetargetReport& report, const ReadOutput& read, const NormalizeOutput& normalize,
+/// The report parts of the read, prepare and infer stages.
+void record_inputs(RetargetReport& report, const ReadOutput& read, const PrepareOutput& prepare,
                    const InferOutput& inferred);
 
 /// The shrink's report part (its time with the binding's).

@@ -150,4 +150,19 @@ std::vector<char> tangled_faces(const TriangleMesh& garment, const InheritedCros
   return tangled;
 }
 
+nlohmann::json to_json(const InheritedReport& report) {
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const FacePair& p : report.document_pairs) pairs.push_back({p.first, p.second});
+  return {{"pairs", report.pairs},
+          {"still_crossing", report.still_crossing},
+          {"tangles", report.tangles},
+          {"tangled_vertices", report.tangled_vertices},
+          {"attached_pieces", report.attached_pieces},
+          {"face_pairs", pairs},
+          {"meaning",
+           "face pairs (0-based input faces) where the garment crossed itself as given: kept as "
+           "they are, their neighbourhood left out of self contact; the certificate counts them "
+           "apart and fails only on new ones"}};
+}
+
 }  // namespace gr

@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/common/types.hpp"
 #include "core/energies/attachment_energy.hpp"
 #include "validate/checks/mesh_intersections.hpp"
@@ -43,6 +45,19 @@ InheritedCrossings tangles_of(const TriangleMesh& garment, std::vector<FacePair>
 std::vector<Attachment> attach_crossing_pieces(const TriangleMesh& garment,
                                                const std::vector<FacePair>& pairs,
                                                const std::vector<int>& face_layer, int& pieces);
+
+/// What the crossings repair kept (report.json `inherited_crossings`): the crossings of the
+/// garment with itself as given, and the pieces attached through them.
+struct InheritedReport {
+  int pairs = 0;                         ///< crossing face pairs of the input
+  int tangles = 0;                       ///< groups of crossings, each left out of self contact
+  int tangled_vertices = 0;              ///< vertices in them
+  int still_crossing = 0;                ///< of the pairs, those the written garment still has
+  int attached_pieces = 0;               ///< pieces crossing another piece, attached to it
+  std::vector<FacePair> document_pairs;  ///< the pairs as input face ids (0-based)
+};
+
+nlohmann::json to_json(const InheritedReport& report);
 
 /// Per face of `garment`, whether a corner lies in one of `crossings`' tangles.
 std::vector<char> tangled_faces(const TriangleMesh& garment, const InheritedCrossings& crossings);

@@ -176,4 +176,33 @@ void remove_document_faces(ObjDocument& document, GltfDocument* gltf,
   document.faces = std::move(kept);
 }
 
+nlohmann::json to_json(const PiercedReport& report) {
+  return {{"shrinks", report.shrinks},
+          {"bones", report.bones},
+          {"left_out_of_contact", report.document_faces},
+          {"opened", report.opened_document_faces},
+          {"meaning",
+           "garment faces (0-based input faces) the avatar passes through as given, such as a cap "
+           "around a bone: left out of the garment-avatar contact so that the avatar can shrink "
+           "free of the rest; those the avatar still passes through at the end are opened, "
+           "left out of the written file"}};
+}
+
+PiercedByBones pierced_by_bones(const TriangleMesh& garment, const Skeleton& skeleton,
+                                const std::vector<std::string>& joint_names) {
+  PiercedByBones pierced;
+  pierced.pairs = faces_pierced_by_bones(garment, skeleton);
+  const auto joint = [&](int j) {
+    return j < static_cast<int>(joint_names.size()) ? joint_names[static_cast<std::size_t>(j)]
+                                                    : fmt::format("joint {}", j);
+  };
+  std::set<std::string> bones;
+  for (const FacePair& p : pierced.pairs) {
+    pierced.faces.push_back(p.first);
+    bones.insert(joint(skeleton.bones(p.second, 0)) + "-" + joint(skeleton.bones(p.second, 1)));
+  }
+  pierced.bones.assign(bones.begin(), bones.end());
+  return pierced;
+}
+
 }  // namespace gr

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/common/types.hpp"
 #include "core/energies/distance_field.hpp"
 #include "core/io/gltf_document.hpp"
@@ -18,6 +20,28 @@ namespace gr {
 /// bones, so no shrunk avatar is free of such a garment.
 /// @return (garment face, bone) pairs, sorted by face.
 std::vector<FacePair> faces_pierced_by_bones(const TriangleMesh& garment, const Skeleton& skeleton);
+
+/// What the pierced-faces repair did (report.json `pierced_faces`): garment faces the avatar
+/// passes through as given, left out of the avatar contact, and those opened at the end.
+struct PiercedReport {
+  int shrinks = 0;                  ///< shrinks tried until one was free of the rest of the garment
+  std::vector<int> document_faces;  ///< left out of the avatar contact, input face ids
+  std::vector<std::string> bones;   ///< source bones through garment faces, "a-b"
+  std::vector<int> opened_document_faces;  ///< left out of the written file, input face ids
+};
+
+nlohmann::json to_json(const PiercedReport& report);
+
+/// Faces the source bones pierce, where the pierced-faces repair starts.
+struct PiercedByBones {
+  std::vector<FacePair> pairs;     ///< (garment face, bone), as faces_pierced_by_bones
+  std::vector<int> faces;          ///< the pierced faces, in pairs' order (repeats kept)
+  std::vector<std::string> bones;  ///< the bones through them, "a-b" by joint name, sorted
+};
+
+/// faces_pierced_by_bones with the bones named (`joint_names` when given, else "joint j").
+PiercedByBones pierced_by_bones(const TriangleMesh& garment, const Skeleton& skeleton,
+                                const std::vector<std::string>& joint_names);
 
 /// One line naming the pierced faces (input face ids `face_to_obj`, 1-based) and the bones
 /// through them (`joint_names` when given, else joint indices).

@@ -203,47 +203,6 @@ std::string layer_name(const std::string& path, const std::string& mesh,
   return name;
 }
 
-/// The surface energy pairs the two faces of each edge, so the solver needs an
-/// edge-manifold surface: an edge shared by more than two faces is split. Beyond its first
-/// two faces (in face order), each of its faces takes copies of the edge's two vertices,
-/// appended at the same positions; the copies are tied to their originals, and the document
-/// still names the originals, so the written file welds them back.
-/// @return the edges split; `ties` gets the (copy, original) pairs.
-int split_non_manifold_edges(SimulationMesh& sim, std::vector<std::array<int, 2>>& ties) {
-  auto& F = sim.mesh.faces;
-  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
-    }
-  std::map<std::pair<int, int>, int> copy_of;  // (face, original) -> copy
-  std::vector<Vector3d> copies;
-  int split = 0;
-  for (const auto& [edge, faces] : faces_of_edge) {
-    if (faces.size() <= 2) continue;
-    ++split;
-    for (std::size_t i = 2; i < faces.size(); ++i)
-      for (const int original : {edge.first, edge.second}) {
-        const int f = faces[i];
-        auto [it, added] = copy_of.emplace(std::pair{f, original}, 0);
-        if (added) {
-          it->second = static_cast<int>(sim.mesh.vertices.rows() + copies.size());
-          copies.push_back(sim.mesh.vertices.row(original).transpose());
-          sim.sim_to_obj.push_back(sim.sim_to_obj[static_cast<std::size_t>(original)]);
-          ties.push_back({it->second, original});
-        }
-        for (int k = 0; k < 3; ++k)
-          if (F(f, k) == original) F(f, k) = it->second;
-      }
-  }
-  const Eigen::Index old_count = sim.mesh.vertices.rows();
-  sim.mesh.vertices.conservativeResize(old_count + static_cast<Eigen::Index>(copies.size()), 3);
-  for (std::size_t c = 0; c < copies.size(); ++c)
-    sim.mesh.vertices.row(old_count + static_cast<Eigen::Index>(c)) = copies[c].transpose();
-  return split;
-}
-
 /// Without skeleton files, two skinned glTF files give the skeletons and skin weights.
 void skeletons_from_skins(const ScenePaths& paths, Scene& scene) {
   const bool skinned_avatar =
@@ -431,12 +390,6 @@ Scene load_scene(const ScenePaths& paths) {
   Scene scene;
   load_garments(paths, scene);
   scene.garment_face_layer = layer_of_garment_faces(scene);
-  scene.split_edges = split_non_manifold_edges(scene.garment, scene.garment_ties);
-  if (scene.split_edges > 0)
-    scene.warnings.push_back(fmt::format(
-        "{}: {} edges shared by more than two faces were split for the solver ({} vertex copies, "
-        "tied to their originals); the written file welds them back",
-        paths.garment, scene.split_edges, scene.garment_ties.size()));
   scene.avatar = load_surface(paths.avatar, paths.avatar_meshes, "avatar", scene.avatar_document,
                               scene.avatar_gltf, scene.warnings);
 

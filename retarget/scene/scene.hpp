@@ -81,9 +81,8 @@ struct Scene {
   std::optional<Skeleton> target_skeleton;
   /// The skeletons' joint names when skins gave them (in their joint order); else empty.
   std::vector<std::string> joint_names;
-  /// Edges of the garment shared by more than two faces, split for the solver; the
-  /// (copy, original) garment vertex pairs the split made (see GarmentScene::ties).
-  int split_edges = 0;
+  /// The (copy, original) garment vertex pairs of the edges split for the solver (the
+  /// prepare stage's split_non_manifold_edges; see GarmentScene::ties).
   std::vector<std::array<int, 2>> garment_ties;
   Eigen::MatrixXd skin_weights;  ///< #joints × #avatar welded vertices; empty when not given
   std::vector<int> no_fit;       ///< welded garment vertex ids

@@ -33,8 +33,8 @@ ShapeThresholds applied_shape_thresholds(ShapeThresholds limits, bool has_skelet
 /// layer's own pairs, and those between two layers.
 void set_inherited_pairs_as_written(const RetargetReport& report, const Scene& scene,
                                     ValidationOptions& validation) {
-  const std::vector<int>& opened = report.shrink.pierced.opened_document_faces;
-  const std::vector<FacePair>& pairs = report.normalize.inherited.document_pairs;
+  const std::vector<int>& opened = report.repairs.pierced.opened_document_faces;
+  const std::vector<FacePair>& pairs = report.repairs.crossings.document_pairs;
   int face_count = 0;
   for (const FacePair& p : pairs) face_count = std::max({face_count, p.first + 1, p.second + 1});
   const std::vector<int> written_id = face_ids_after_removal(face_count, opened);
@@ -193,9 +193,9 @@ std::string certify_summary(const Certificate& certificate, const RetargetReport
                             double total_seconds) {
   const auto totals = certificate.validation.result.totals();
   const std::string inherited =
-      report.normalize.inherited.pairs > 0
+      report.repairs.crossings.pairs > 0
           ? fmt::format(" (and {} of the input's {} inherited)",
-                        totals.inherited_self_intersections, report.normalize.inherited.pairs)
+                        totals.inherited_self_intersections, report.repairs.crossings.pairs)
           : std::string();
   const std::string layers =
       certificate.validation.garments.size() > 1

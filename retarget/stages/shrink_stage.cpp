@@ -36,7 +36,7 @@ ShrinkResult shrink_once(const ShrinkInput& input, const ShrinkOptions& options,
 ShrinkResult shrink_leaving_out_pierced(const ShrinkInput& input, const ShrinkOptions& options,
                                         ShrinkOutput& out, Progress& progress) {
   const TriangleMesh& garment = input.normalized.garment;
-  PiercedReport& report = out.report.pierced;
+  PiercedReport& report = out.pierced;
   std::vector<int>& pierced = out.pierced_faces;
   const auto max_faces =
       static_cast<std::size_t>(kMaxPiercedFraction * static_cast<double>(garment.faces.rows()));
@@ -49,26 +49,14 @@ ShrinkResult shrink_leaving_out_pierced(const ShrinkInput& input, const ShrinkOp
     pierced = std::move(merged);
     return true;
   };
-  if (input.normalized.source_skeleton) {
-    const Skeleton& skeleton = *input.normalized.source_skeleton;
-    const std::vector<FacePair> by_bones = faces_pierced_by_bones(garment, skeleton);
-    std::vector<int> seeds;
-    std::set<std::string> bones;
-    for (const FacePair& p : by_bones) {
-      seeds.push_back(p.first);
-      const auto joint = [&](int j) {
-        return j < static_cast<int>(input.scene.joint_names.size())
-                   ? input.scene.joint_names[static_cast<std::size_t>(j)]
-                   : fmt::format("joint {}", j);
-      };
-      bones.insert(joint(skeleton.bones(p.second, 0)) + "-" + joint(skeleton.bones(p.second, 1)));
-    }
-    report.bones.assign(bones.begin(), bones.end());
-    if (!seeds.empty() && leave_out(seeds))
+  const PiercedByBones& by_bones = input.pierced_by_bones;
+  if (!by_bones.pairs.empty()) {
+    report.bones = by_bones.bones;
+    if (leave_out(by_bones.faces))
       progress.log("shrink",
                    "{} garment faces pierced by {} source bones: {} left out of "
                    "the avatar contact",
-                   by_bones.size(), bones.size(), pierced.size());
+                   by_bones.pairs.size(), by_bones.bones.size(), pierced.size());
   }
   for (int attempt = 1;; ++attempt) {
     report.shrinks = attempt;

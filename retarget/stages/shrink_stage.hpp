@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "garment/repairs/pierced_faces.hpp"
 #include "retarget/report.hpp"
 #include "retarget/run/progress.hpp"
 #include "retarget/scene/normalization.hpp"
@@ -17,6 +18,8 @@ struct ShrinkInput {
   const NormalizedScene& normalized;
   /// #J×#welded avatar vertices for the skeleton shrink, or empty (nearest bone).
   const Eigen::MatrixXd& skin_weights;
+  /// Faces the source bones pierce (the prepare stage's), where the faces left out start.
+  const PiercedByBones& pierced_by_bones;
 };
 
 struct ShrinkOptions {
@@ -41,6 +44,7 @@ struct ShrinkOutput {
   /// given), sorted rows of the normalized garment's faces.
   std::vector<int> pierced_faces;
   ShrinkReport report;
+  PiercedReport pierced;  ///< the faces left out, for the pierced-faces report section
   double seconds = 0.0;
 };
 

@@ -18,7 +18,8 @@ namespace {
 int largest_layer_faces(const Scene& scene) {
   if (scene.layers.size() <= 1) return 0;
   std::vector<int> layer_faces(scene.layers.size(), 0);
-  for (const int layer : layer_of_garment_faces(scene)) ++layer_faces[static_cast<std::size_t>(layer)];
+  for (const int layer : layer_of_garment_faces(scene))
+    ++layer_faces[static_cast<std::size_t>(layer)];
   return *std::max_element(layer_faces.begin(), layer_faces.end());
 }
 
@@ -43,8 +44,7 @@ class Inflations {
     add_inflation_attempt(report_.inflate, inflated.report);
     record_modelled(report_, solver_);
     report_.seconds.inflate += inflated.seconds;
-    progress_.log("inflate", "{} ({:.2f} s)", inflated.inflation.message,
-                  report_.seconds.inflate);
+    progress_.log("inflate", "{} ({:.2f} s)", inflated.inflation.message, report_.seconds.inflate);
     return inflated.inflation;
   }
 
@@ -72,9 +72,9 @@ SolveOutput run_solve(const SolveInput& in, ShrinkOutput& shrink, RetargetReport
   const RetargetParameters& parameters = report.parameters.solver;
   const SourceEase* source_ease =
       report.ease.fit == FitMode::kEase ? &in.inferred.source_ease : nullptr;
-  ProxyOutput proxy = run_proxy({solver, source_ease, largest_layer_faces(in.scene)},
-                                {parameters, report.parameters.proxy_faces, report.ease.max_offset},
-                                progress);
+  ProxyOutput proxy =
+      run_proxy({solver, source_ease, largest_layer_faces(in.scene)},
+                {parameters, report.parameters.proxy_faces, report.ease.max_offset}, progress);
   report.proxy = proxy.report;
   report.seconds.proxy = proxy.report.seconds;
   // A retry below solves the garment directly: the proxy's paths lead where it failed.
@@ -97,22 +97,23 @@ SolveOutput run_solve(const SolveInput& in, ShrinkOutput& shrink, RetargetReport
     if (step == SolveStep::kThinnerShrink) {
       dhat = first_dhat;
       const double pullback = SolvePolicy::kStalledPullbackFactor * shrink.shrunk.pullback;
-      const std::string no_thinner = run_thinner_shrink(in.shrink_input, in.shrink_options,
-                                                        pullback, shrink, progress);
+      const std::string no_thinner =
+          run_thinner_shrink(in.shrink_input, in.shrink_options, pullback, shrink, progress);
       // The shrunk avatar is what failed: one the garment can escape from does not exist.
       if (!no_thinner.empty()) {
-        solved.failure = {Outcome::kNoValidShrink,
-                          fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
-                                      "failed: {}; and no thinner shrink is free of the garment: {}",
-                                      shrink.shrunk.pullback, inflation.message, no_thinner)};
+        solved.failure = {
+            Outcome::kNoValidShrink,
+            fmt::format("the inflation from the skeleton shrink (pullback {:.3g}) "
+                        "failed: {}; and no thinner shrink is free of the garment: {}",
+                        shrink.shrunk.pullback, inflation.message, no_thinner)};
         return solved;
       }
       record_shrink(report, shrink, in.inferred);
     } else {
       const std::string why =
-          pressed > 0 ? fmt::format(", {} pairs pressed together at crossings the input came with",
-                                    pressed)
-                      : std::string();
+          pressed > 0
+              ? fmt::format(", {} pairs pressed together at crossings the input came with", pressed)
+              : std::string();
       pressed = 0;
       progress.warn(
           fmt::format("the inflation stalled with dhat {:.3g}{}: inflating again with "

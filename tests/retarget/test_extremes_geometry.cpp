@@ -83,8 +83,8 @@ TEST_CASE("extremes: an exactly collinear (zero-area) garment face with distinct
       "collinear", test::with_sliver(tent_patch(), kInteriorFace, 0.0), tent_avatar());
   const RetargetResult result = run_retarget(options);
   INFO(result.message);
-  CHECK(result.report.normalize.inherited.pairs > 0);
-  const auto& pairs = result.report.normalize.inherited.document_pairs;
+  CHECK(result.report.repairs.crossings.pairs > 0);
+  const auto& pairs = result.report.repairs.crossings.document_pairs;
   CHECK(std::find_if(pairs.begin(), pairs.end(), [](const FacePair& p) {
           return p.first == 39 && p.second == 54;
         }) != pairs.end());

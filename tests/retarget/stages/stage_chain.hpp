@@ -12,7 +12,7 @@
 #include "retarget/stages/fit_stage.hpp"
 #include "retarget/stages/infer_stage.hpp"
 #include "retarget/stages/inflate_stage.hpp"
-#include "retarget/stages/normalize_stage.hpp"
+#include "retarget/stages/prepare_stage.hpp"
 #include "retarget/stages/read_stage.hpp"
 #include "retarget/stages/shrink_stage.hpp"
 #include "retarget/stages/write_stage.hpp"
@@ -45,17 +45,18 @@ struct StageChain {
     if (!read_) read_ = run_read({paths}, {}, progress);
     return *read_;
   }
-  const NormalizeOutput& normalize() {
-    if (!normalize_)
-      normalize_ = run_normalize({read().scene, paths}, {parameters.solver.dhat}, progress);
-    return *normalize_;
+  const PrepareOutput& prepare() {
+    read();
+    if (!prepare_)
+      prepare_ = run_prepare({read_->scene, paths}, {parameters.solver.dhat}, progress);
+    return *prepare_;
   }
   const InferOutput& infer() {
     if (!infer_) {
       InferOptions options;
       options.out_dir = out_dir.string();
       options.voxel_size = parameters.voxel_size;
-      infer_ = run_infer({read().scene, normalize().normalized, paths, read().shrink_mode}, options,
+      infer_ = run_infer({read().scene, prepare().normalized, paths, read().shrink_mode}, options,
                          progress);
     }
     return *infer_;
@@ -65,16 +66,17 @@ struct StageChain {
       ShrinkOptions options;
       options.mode = read().shrink_mode;
       options.voxel_size = parameters.voxel_size;
-      shrink_ = run_shrink({read().scene, normalize().normalized, infer().skin_weights}, options,
-                           progress);
+      shrink_ =
+          run_shrink({read().scene, prepare().normalized, infer().skin_weights, prepare().pierced},
+                     options, progress);
       if (!shrink_->failure) distance_field_.emplace(shrink_->grid);
     }
     return *shrink_;
   }
   SolverScene& solver() {
     if (!solver_)
-      solver_ = make_solver_scene({read().scene, normalize().normalized, shrink().shrunk.vertices,
-                                   *distance_field_, normalize().inherited, shrink().pierced_faces},
+      solver_ = make_solver_scene({read().scene, prepare().normalized, shrink().shrunk.vertices,
+                                   *distance_field_, prepare().inherited, shrink().pierced_faces},
                                   parameters.solver);
     return *solver_;
   }
@@ -91,7 +93,7 @@ struct StageChain {
     if (!write_) {
       read();
       const Eigen::MatrixXd none;
-      write_ = run_write({read_->scene, normalize().normalized, fit().fit.garment,
+      write_ = run_write({read_->scene, prepare().normalized, fit().fit.garment,
                           shrink().pierced_faces, *distance_field_, none, out_dir.string()},
                          {}, progress);
     }
@@ -102,7 +104,7 @@ struct StageChain {
       const std::string file = (out_dir / write().file_name).string();
       certify_ = run_certify({paths,
                               read().scene,
-                              normalize().normalized,
+                              prepare().normalized,
                               fit().fit.garment,
                               solver().fit_faces,
                               nullptr,
@@ -123,7 +125,7 @@ struct StageChain {
 
  private:
   std::optional<ReadOutput> read_;
-  std::optional<NormalizeOutput> normalize_;
+  std::optional<PrepareOutput> prepare_;
   std::optional<InferOutput> infer_;
   std::optional<ShrinkOutput> shrink_;
   std::optional<GridDistanceField> distance_field_;

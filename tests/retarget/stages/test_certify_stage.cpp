@@ -16,7 +16,7 @@ TEST_CASE("certify stage: the written file certified, with its shape and fit err
   CHECK(out.ease.vertices == 0);  // no source ease
   RetargetReport report;
   report.certify = out.report;
-  report.normalize = chain.normalize().report;
+  report.normalize = chain.prepare().report;
   report.fit = chain.fit().report;
   CHECK_THAT(certify_summary(out.certificate, report, 1.0),
              Catch::StartsWith("certified: 0 garment-avatar"));

@@ -17,7 +17,7 @@ TEST_CASE("fit stage: the garment settles clear of the avatar, with its terms re
   CHECK(out.report.surface_energy_per_area >= 0.0);
   CHECK(out.report.min_distance > 0.0);
   CHECK_FALSE(out.ease_targets);  // tight: no source ease given
-  const NormalizedScene& scene = chain.normalize().normalized;
+  const NormalizedScene& scene = chain.prepare().normalized;
   const TriangleMesh garment{out.fit.garment, scene.garment.faces};
   CHECK(find_intersecting_face_pairs(garment, scene.avatar).count == 0);
 }

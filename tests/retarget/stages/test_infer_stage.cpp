@@ -20,7 +20,7 @@ TEST_CASE("infer stage: without a source body the fit is tight, warned; ease nee
   ease.fit_mode = FitMode::kEase;
   ease.out_dir = chain.out_dir.string();
   Progress progress(true);
-  CHECK_THROWS_AS(run_infer({chain.read().scene, chain.normalize().normalized, chain.paths,
+  CHECK_THROWS_AS(run_infer({chain.read().scene, chain.prepare().normalized, chain.paths,
                              ShrinkMode::kLevelset},
                             ease, progress),
                   InputError);
@@ -35,7 +35,7 @@ TEST_CASE("infer stage: the garment's ease on its source body widens the fit's b
   CHECK(out.ease.source_known);
   CHECK(out.ease.fit == FitMode::kEase);
   CHECK(out.source_ease.distance.size() ==
-        static_cast<std::size_t>(chain.normalize().normalized.garment.vertices.rows()));
+        static_cast<std::size_t>(chain.prepare().normalized.garment.vertices.rows()));
   CHECK(out.ease.distance_band >= kDistanceBand);
   CHECK(out.ease.max_offset > 0.0);
   CHECK(out.ease.max_offset < out.ease.distance_band);

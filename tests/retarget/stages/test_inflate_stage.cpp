@@ -18,7 +18,7 @@ TEST_CASE("inflate stage: the avatar grows back to t = 1 with the garment clear 
   CHECK(out.report.status == "snapped");
   CHECK(out.report.al_rounds >= 1);
   CHECK(out.report.newton_iterations > 0);
-  const NormalizedScene& scene = chain.normalize().normalized;
+  const NormalizedScene& scene = chain.prepare().normalized;
   const TriangleMesh garment{out.inflation.garment, scene.garment.faces};
   CHECK(find_intersecting_face_pairs(garment, scene.avatar).count == 0);
 

@@ -10,7 +10,7 @@ TEST_CASE("shrink stage: a shrunk avatar free of the garment, and the grid the f
   test::StageChain chain("shrink");
   const ShrinkOutput& out = chain.shrink();
   REQUIRE_FALSE(out.failure);
-  const NormalizedScene& scene = chain.normalize().normalized;
+  const NormalizedScene& scene = chain.prepare().normalized;
   CHECK(out.shrunk.vertices.rows() == scene.avatar.vertices.rows());
   CHECK(out.report.mode == ShrinkMode::kLevelset);
   CHECK(out.report.depth > 0.0);

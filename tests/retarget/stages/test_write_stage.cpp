@@ -25,7 +25,7 @@ TEST_CASE("write stage: the garment as its input document, in the avatar's frame
   glb.format = "glb";
   const Eigen::MatrixXd none;
   const WriteOutput as_glb =
-      run_write({const_cast<Scene&>(chain.read().scene), chain.normalize().normalized,
+      run_write({const_cast<Scene&>(chain.read().scene), chain.prepare().normalized,
                  chain.fit().fit.garment, chain.shrink().pierced_faces,
                  GridDistanceField(chain.shrink().grid), none, chain.out_dir.string()},
                 glb, chain.progress);

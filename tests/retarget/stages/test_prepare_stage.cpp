@@ -4,10 +4,10 @@
 
 namespace gr {
 
-TEST_CASE("normalize stage: normalized scene, lattice below the barrier, no inherited crossing",
+TEST_CASE("prepare stage: normalized scene, lattice below the barrier, nothing to repair",
           "[pipeline][stages]") {
-  test::StageChain chain("normalize");
-  const NormalizeOutput& out = chain.normalize();
+  test::StageChain chain("prepare");
+  const PrepareOutput& out = chain.prepare();
   const NormalizedScene& scene = out.normalized;
   // Every row of the scene as read, in normalized units (the body about 2 across).
   CHECK(scene.garment.vertices.rows() == chain.read().scene.garment.mesh.vertices.rows());
@@ -18,7 +18,9 @@ TEST_CASE("normalize stage: normalized scene, lattice below the barrier, no inhe
   CHECK(out.report.lattice > 0.0);
   CHECK(out.report.lattice < chain.parameters.solver.dhat);
   CHECK(out.ccd_min_separation >= out.report.lattice);
-  CHECK(out.report.inherited.pairs == 0);
+  CHECK(out.repairs.crossings.pairs == 0);
+  CHECK(out.repairs.non_manifold.edges == 0);
+  CHECK(out.pierced.pairs.empty());
   CHECK(out.inherited.pairs.empty());
   CHECK(out.report.garment_faces == scene.garment.faces.rows());
   CHECK(chain.progress.warnings().empty());
