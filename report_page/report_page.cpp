@@ -13,6 +13,7 @@
 #include "report_page/page_assets.hpp"
 #include "report_page/page_colours.hpp"
 #include "report_page/page_html.hpp"
+#include "report_page/page_report.hpp"
 #include "report_page/view_frame.hpp"
 
 namespace gr {
@@ -24,30 +25,6 @@ using Json = nlohmann::ordered_json;
 /// Warnings listed beside the view; the documents at the end hold them all.
 constexpr std::size_t kListedWarnings = 12;
 
-// ---- Reading the report documents -------------------------------------------------------
-
-/// The value at a JSON pointer, or null when the document has none there.
-template <typename J>
-const J* find(const J& doc, const char* pointer) {
-  if (!doc.is_object()) return nullptr;
-  const typename J::json_pointer path(pointer);
-  return doc.contains(path) ? &doc.at(path) : nullptr;
-}
-
-template <typename J>
-std::optional<double> number_at(const J& doc, const char* pointer) {
-  const J* v = find(doc, pointer);
-  if (v && v->is_number()) return v->template get<double>();
-  return std::nullopt;
-}
-
-template <typename J>
-std::string text_at(const J& doc, const char* pointer) {
-  const J* v = find(doc, pointer);
-  if (!v) return "";
-  return v->is_string() ? v->template get<std::string>() : v->dump();
-}
-
 std::string format_number(double value) { return fmt::format("{:.3g}", value); }
 
 std::string format_length(std::optional<double> value, const std::string& units) {
@@ -56,6 +33,13 @@ std::string format_length(std::optional<double> value, const std::string& units)
 
 std::string format_percent(std::optional<double> fraction) {
   return fraction ? fmt::format("{:.2f}%", 100.0 * *fraction) : "—";
+}
+
+/// `items` joined by ", ".
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
 }
 
 // ---- The numbers beside the view ---------------------------------------------------------
@@ -86,22 +70,18 @@ std::string section_html(const Section& section) {
 }
 
 /// The certificate's (or, without one, the report's) verdict as a banner.
-std::string verdict_html(const ReportPageData& data) {
-  const Json* certified = find(data.certificate, "/certified");
-  std::optional<bool> verdict;
-  if (certified && certified->is_boolean())
-    verdict = certified->get<bool>();
-  else if (const auto* c = find(data.report, "/certified"); c && c->is_boolean())
-    verdict = c->get<bool>();
+std::string verdict_html(const PageReport& page) {
+  const CertificatePageReport certificate = page.certificate.value_or(CertificatePageReport{});
+  std::optional<bool> verdict = certificate.certified;
+  if (!verdict && page.run) verdict = page.run->certified;
   if (!verdict) return "";
-  const bool is_certificate = text_at(data.certificate, "/kind") == "certificate";
+  const bool is_certificate = certificate.kind == "certificate";
   std::string detail;
-  if (const Json* counts = find(data.certificate, "/counts"))
+  if (const auto& counts = certificate.counts)
     detail =
         fmt::format("{} garment–avatar, {} self and {} garment–garment intersecting face pairs",
-                    counts->value("garment_avatar_intersections", 0),
-                    counts->value("garment_self_intersections", 0),
-                    counts->value("garment_garment_intersections", 0));
+                    counts->garment_avatar_intersections, counts->garment_self_intersections,
+                    counts->garment_garment_intersections);
   const std::string headline =
       *verdict ? (is_certificate
                       ? "Certified: the written garment intersects neither the avatar nor itself"
@@ -114,182 +94,155 @@ std::string verdict_html(const ReportPageData& data) {
 }
 
 /// Smallest certified garment–avatar clearance over the certificate's garments.
-std::optional<double> certified_clearance(const Json& certificate) {
-  const Json* garments = find(certificate, "/garments");
-  if (!garments || !garments->is_array()) return std::nullopt;
+std::optional<double> certified_clearance(const std::optional<CertificatePageReport>& certificate) {
+  if (!certificate) return std::nullopt;
   std::optional<double> smallest;
-  for (const Json& g : *garments)
-    if (const auto d = number_at(g, "/avatar_clearance/distance"))
-      smallest = smallest ? std::min(*smallest, *d) : *d;
+  for (const CertificateGarment& g : certificate->garments)
+    if (const auto d = g.avatar_clearance) smallest = smallest ? std::min(*smallest, *d) : *d;
   return smallest;
 }
 
-std::vector<Section> retarget_sections(const ReportPageData& data) {
-  const nlohmann::json& r = data.report;
-  const std::string& u = data.units;
-  std::vector<Section> sections;
+/// What the run repaired or kept of the input as given; no section when nothing.
+std::optional<Section> repairs_section(const RunPageReport& r) {
+  const auto inherited = r.inherited_crossings.value_or(ReportInheritedCrossings{});
+  const auto split = r.split_non_manifold_edges.value_or(ReportSplitEdges{});
+  const auto pierced = r.pierced_faces.value_or(ReportPiercedFaces{});
+  if (inherited.pairs <= 0 && split.edges <= 0 && pierced.left_out_of_contact.empty())
+    return std::nullopt;
+  Section repairs{"Input as given", {}, ""};
+  if (inherited.pairs > 0)
+    repairs.rows.push_back(
+        {"self-crossing face pairs kept (inherited)",
+         fmt::format("{}, {} still crossing", inherited.pairs, inherited.still_crossing)});
+  if (inherited.attached_pieces > 0)
+    repairs.rows.push_back({"pieces through another piece, attached to it",
+                            fmt::format("{}", inherited.attached_pieces)});
+  if (!pierced.left_out_of_contact.empty()) {
+    const std::string bones = joined(pierced.bones);
+    repairs.rows.push_back({"faces the body passes through (caps), left out of contact",
+                            fmt::format("{}, {} opened (not written){}",
+                                        pierced.left_out_of_contact.size(), pierced.opened.size(),
+                                        bones.empty() ? "" : "; bones through them: " + bones)});
+  }
+  if (split.edges > 0)
+    repairs.rows.push_back(
+        {"edges of more than two faces, split and welded back",
+         fmt::format("{} ({} vertex copies)", split.edges, split.vertex_copies)});
+  return repairs;
+}
 
+std::vector<Section> retarget_sections(const RunPageReport& r,
+                                       const std::optional<CertificatePageReport>& certificate,
+                                       const std::string& u) {
+  std::vector<Section> sections;
+  const auto fit_error = r.fit_error.value_or(ReportFitError{});
+  const auto fit_solve = r.fit.value_or(ReportFitSolve{});
   Section fit{"Fit", {}, ""};
-  fit.rows.push_back({"mean distance to body", format_length(number_at(r, "/fit_error/mean"), u)});
-  fit.rows.push_back({"95th percentile", format_length(number_at(r, "/fit_error/p95"), u)});
-  if (const auto faces = number_at(r, "/modelled/fit_faces"))
+  fit.rows.push_back({"mean distance to body", format_length(fit_error.mean, u)});
+  fit.rows.push_back({"95th percentile", format_length(fit_error.p95, u)});
+  if (r.modelled)
     fit.rows.push_back(
-        {"fit faces", fmt::format("{:.0f} of {:.0f}", *faces,
-                                  number_at(r, "/modelled/garment_faces").value_or(0))});
-  fit.rows.push_back(
-      {"fit solve", fmt::format("{} ({:.0f} Newton steps)", text_at(r, "/fit/status"),
-                                number_at(r, "/fit/newton_iterations").value_or(0))});
+        {"fit faces", fmt::format("{} of {}", r.modelled->fit_faces, r.modelled->garment_faces)});
+  fit.rows.push_back({"fit solve", fmt::format("{} ({} Newton steps)", fit_solve.status,
+                                               fit_solve.newton_iterations)});
   sections.push_back(fit);
 
+  const auto ease_kept = r.ease.value_or(ReportEase{});
   Section ease{"Ease", {}, ""};
-  ease.rows.push_back(
-      {"fit", text_at(r, "/ease/fit") + " (source ease: " + text_at(r, "/ease/source") + ")"});
-  if (number_at(r, "/ease/measured_vertices").value_or(0) > 0) {
+  ease.rows.push_back({"fit", ease_kept.fit + " (source ease: " + ease_kept.source + ")"});
+  if (ease_kept.measured_vertices > 0) {
     ease.rows.push_back(
-        {"ease kept, median ratio", format_number(number_at(r, "/ease/median_ratio").value_or(0))});
-    ease.rows.push_back({"vertices within 25% of their source ease",
-                         format_percent(number_at(r, "/ease/within_25_percent"))});
+        {"ease kept, median ratio", format_number(ease_kept.median_ratio.value_or(0))});
+    ease.rows.push_back(
+        {"vertices within 25% of their source ease", format_percent(ease_kept.within_25_percent)});
   }
   sections.push_back(ease);
 
-  // What the run repaired or kept of the input as given.
-  const double inherited = number_at(r, "/inherited_crossings/pairs").value_or(0);
-  const double split = number_at(r, "/split_non_manifold_edges/edges").value_or(0);
-  const double attached = number_at(r, "/inherited_crossings/attached_pieces").value_or(0);
-  const auto listed = [&](const char* pointer) {
-    const nlohmann::json* list = find(r, pointer);
-    return list && list->is_array() ? list->size() : std::size_t{0};
-  };
-  const std::size_t pierced = listed("/pierced_faces/left_out_of_contact");
-  if (inherited > 0 || split > 0 || pierced > 0) {
-    Section repairs{"Input as given", {}, ""};
-    if (inherited > 0)
-      repairs.rows.push_back(
-          {"self-crossing face pairs kept (inherited)",
-           fmt::format("{:.0f}, {:.0f} still crossing", inherited,
-                       number_at(r, "/inherited_crossings/still_crossing").value_or(0))});
-    if (attached > 0)
-      repairs.rows.push_back(
-          {"pieces through another piece, attached to it", fmt::format("{:.0f}", attached)});
-    if (pierced > 0) {
-      std::string bones;
-      if (const nlohmann::json* names = find(r, "/pierced_faces/bones"); names && names->is_array())
-        for (const auto& name : *names)
-          if (name.is_string()) bones += (bones.empty() ? "" : ", ") + name.get<std::string>();
-      repairs.rows.push_back(
-          {"faces the body passes through (caps), left out of contact",
-           fmt::format("{}, {} opened (not written){}", pierced, listed("/pierced_faces/opened"),
-                       bones.empty() ? "" : "; bones through them: " + bones)});
-    }
-    if (split > 0)
-      repairs.rows.push_back(
-          {"edges of more than two faces, split and welded back",
-           fmt::format("{:.0f} ({:.0f} vertex copies)", split,
-                       number_at(r, "/split_non_manifold_edges/vertex_copies").value_or(0))});
-    sections.push_back(repairs);
-  }
+  if (auto repairs = repairs_section(r)) sections.push_back(std::move(*repairs));
 
   Section clearance{"Clearance", {}, ""};
   clearance.rows.push_back(
-      {"certified minimum (exact files)", format_length(certified_clearance(data.certificate), u)});
-  clearance.rows.push_back(
-      {"solver's minimum distance", format_length(number_at(r, "/min_distance/avatar_units"), u)});
+      {"certified minimum (exact files)", format_length(certified_clearance(certificate), u)});
+  clearance.rows.push_back({"solver's minimum distance", format_length(r.min_distance, u)});
   sections.push_back(clearance);
 
+  const auto change = r.shape.value_or(ReportShape{});
   Section shape{"Shape change", {}, ""};
-  if (const auto scale = number_at(r, "/shape/scale"))
-    shape.rows.push_back({"scale (median edge-length ratio)", format_number(*scale)});
-  shape.rows.push_back({"scale-free mean edge-length change",
-                        format_percent(number_at(r, "/shape/mean_edge_change"))});
-  shape.rows.push_back({"scale-free 95th-percentile edge-length change",
-                        format_percent(number_at(r, "/shape/p95_edge_change"))});
-  shape.rows.push_back({"area change", format_percent(number_at(r, "/shape/area_change"))});
+  if (change.scale)
+    shape.rows.push_back({"scale (median edge-length ratio)", format_number(*change.scale)});
+  shape.rows.push_back(
+      {"scale-free mean edge-length change", format_percent(change.mean_edge_change)});
+  shape.rows.push_back(
+      {"scale-free 95th-percentile edge-length change", format_percent(change.p95_edge_change)});
+  shape.rows.push_back({"area change", format_percent(change.area_change)});
   shape.rows.push_back({"largest boundary-loop displacement (of the diagonal)",
-                        format_percent(number_at(r, "/shape/loop_displacement"))});
-  if (const auto e = number_at(r, "/shape/surface_energy_per_area"))
-    shape.rows.push_back({"surface energy per area", format_number(*e)});
-  if (const auto* loops = find(r, "/position/loop_offsets");
-      loops && loops->is_array() && !loops->empty()) {
+                        format_percent(change.loop_displacement)});
+  if (change.surface_energy_per_area)
+    shape.rows.push_back(
+        {"surface energy per area", format_number(*change.surface_energy_per_area)});
+  if (!r.loop_offsets.empty()) {
     double worst = 0.0;
-    for (const auto& v : *loops) worst = std::max(worst, v.get<double>());
+    for (const double offset : r.loop_offsets) worst = std::max(worst, offset);
     shape.rows.push_back(
         {"boundary loops off their place",
-         fmt::format("{} loops, worst {:.2f}% of its bone", loops->size(), 100.0 * worst)});
+         fmt::format("{} loops, worst {:.2f}% of its bone", r.loop_offsets.size(), 100.0 * worst)});
   }
   sections.push_back(shape);
 
   Section times{"Stage times", {}, ""};
-  for (const char* stage :
-       {"read", "normalize", "shrink", "inflate", "fit", "write", "certify", "total"})
-    if (const auto s = number_at(r, (std::string("/seconds/") + stage).c_str()))
-      times.rows.push_back({stage, fmt::format("{:.2f} s", *s)});
+  for (const ReportStageTime& t : r.seconds)
+    if (t.seconds) times.rows.push_back({t.stage, fmt::format("{:.2f} s", *t.seconds)});
   sections.push_back(times);
 
+  const auto shrink = r.shrink.value_or(ReportShrink{});
+  const auto inflate = r.inflate.value_or(ReportInflate{});
+  const auto modelled = r.modelled.value_or(ReportModelled{});
   Section run{"Run", {}, ""};
-  run.rows.push_back({"quality", text_at(r, "/quality")});
+  run.rows.push_back({"quality", r.quality});
+  run.rows.push_back({"shrink", fmt::format("{} (depth {})", shrink.mode,
+                                            format_number(shrink.depth.value_or(0)))});
   run.rows.push_back(
-      {"shrink", fmt::format("{} (depth {})", text_at(r, "/shrink/mode"),
-                             format_number(number_at(r, "/shrink/depth").value_or(0)))});
-  run.rows.push_back(
-      {"inflation",
-       fmt::format("{} ({:.0f} rounds, {:.0f} resets, {:.0f} Newton steps)",
-                   text_at(r, "/inflate/status"), number_at(r, "/inflate/al_rounds").value_or(0),
-                   number_at(r, "/inflate/resets").value_or(0),
-                   number_at(r, "/inflate/newton_iterations").value_or(0))});
-  if (const auto* terms = find(r, "/modelled/terms"); terms && terms->is_array()) {
-    std::string list;
-    for (const auto& t : *terms) list += (list.empty() ? "" : ", ") + t.get<std::string>();
-    run.rows.push_back({"terms", list});
-  }
+      {"inflation", fmt::format("{} ({} rounds, {} resets, {} Newton steps)", inflate.status,
+                                inflate.al_rounds, inflate.resets, inflate.newton_iterations)});
+  if (r.modelled) run.rows.push_back({"terms", joined(modelled.terms)});
   run.rows.push_back(
       {"avatar faces modelled",
-       fmt::format("{:.0f} of {:.0f}", number_at(r, "/modelled/avatar_faces_modelled").value_or(0),
-                   number_at(r, "/modelled/avatar_faces_total").value_or(0))});
-  run.rows.push_back({"self-contact", text_at(r, "/modelled/self_contact_where")});
-  if (const auto m = number_at(r, "/peak_memory_mb"))
-    run.rows.push_back({"peak memory", fmt::format("{:.0f} MB", *m)});
+       fmt::format("{} of {}", modelled.avatar_faces_modelled, modelled.avatar_faces_total)});
+  run.rows.push_back({"self-contact", modelled.self_contact_where});
+  if (r.peak_memory_mb)
+    run.rows.push_back({"peak memory", fmt::format("{:.0f} MB", *r.peak_memory_mb)});
   sections.push_back(run);
   return sections;
 }
 
 /// Per garment of a validation report or certificate: its counts and clearance.
-std::vector<Section> validation_sections(const ReportPageData& data) {
+std::vector<Section> validation_sections(const std::optional<CertificatePageReport>& certificate,
+                                         const std::string& units) {
   std::vector<Section> sections;
-  const Json* garments = find(data.certificate, "/garments");
-  if (!garments || !garments->is_array()) return sections;
-  for (const Json& g : *garments) {
-    Section s{"Garment " + text_at(g, "/path"), {}, ""};
-    s.rows.push_back({"intersecting the avatar",
-                      fmt::format("{:.0f} face pairs",
-                                  number_at(g, "/avatar_intersections/count").value_or(0))});
+  if (!certificate) return sections;
+  for (const CertificateGarment& g : certificate->garments) {
+    Section s{"Garment " + g.path, {}, ""};
     s.rows.push_back(
-        {"intersecting itself",
-         fmt::format("{:.0f} face pairs", number_at(g, "/self_intersections/count").value_or(0))});
-    s.rows.push_back({"degenerate faces",
-                      fmt::format("{:.0f}", number_at(g, "/degenerate_faces/count").value_or(0))});
-    s.rows.push_back({"clearance to the avatar",
-                      format_length(number_at(g, "/avatar_clearance/distance"), data.units)});
-    if (const auto near = number_at(g, "/near_vertices/count"))
-      s.rows.push_back({"vertices nearer than " +
-                            format_number(number_at(g, "/near_vertices/threshold").value_or(0)),
-                        format_number(*near)});
+        {"intersecting the avatar", fmt::format("{} face pairs", g.avatar_intersections)});
+    s.rows.push_back({"intersecting itself", fmt::format("{} face pairs", g.self_intersections)});
+    s.rows.push_back({"degenerate faces", fmt::format("{}", g.degenerate_faces)});
+    s.rows.push_back({"clearance to the avatar", format_length(g.avatar_clearance, units)});
+    if (const auto& near = g.near_vertices)
+      s.rows.push_back({"vertices nearer than " + format_number(near->threshold.value_or(0)),
+                        format_number(near->count)});
     sections.push_back(s);
   }
   return sections;
 }
 
 /// The report's warnings and the certificate's errors and warnings.
-Section warnings_section(const ReportPageData& data) {
+Section warnings_section(const PageReport& page) {
   std::vector<std::string> items;
-  if (const auto* w = find(data.report, "/warnings"); w && w->is_array())
-    for (const auto& text : *w) items.push_back(text.get<std::string>());
-  if (const Json* messages = find(data.certificate, "/issues/messages");
-      messages && messages->is_array())
-    for (const Json& m : *messages) {
-      const std::string severity = m.value("severity", "");
-      if (severity == "error" || severity == "warning")
-        items.push_back(severity + " " + m.value("code", "") + ": " + m.value("message", ""));
-    }
+  if (page.run) items = page.run->warnings;
+  if (page.certificate)
+    for (const CertificateMessage& m : page.certificate->messages)
+      if (m.severity == "error" || m.severity == "warning")
+        items.push_back(m.severity + " " + m.code + ": " + m.message);
   Section s{"Warnings", {}, ""};
   if (items.empty()) {
     s.html = "<p class=\"none\">none</p>\n";
@@ -306,7 +259,7 @@ Section warnings_section(const ReportPageData& data) {
 }
 
 /// Both documents in full, folded.
-std::string documents_html(const ReportPageData& data) {
+std::string documents_html(const ReportPageData& data, const PageReport& page) {
   std::string out;
   auto add = [&](const char* name, const std::string& text) {
     out += fmt::format("<details class=\"document\"><summary>{}</summary><pre>{}</pre></details>\n",
@@ -314,8 +267,7 @@ std::string documents_html(const ReportPageData& data) {
   };
   if (!data.report.is_null()) add("report.json", data.report.dump(2));
   if (!data.certificate.is_null())
-    add(text_at(data.certificate, "/kind") == "certificate" ? "certificate.json"
-                                                            : "validation report",
+    add(page.certificate->kind == "certificate" ? "certificate.json" : "validation report",
         data.certificate.dump(2));
   return out;
 }
@@ -517,12 +469,14 @@ std::string report_page_html(const ReportPageData& data) {
   body += std::string("<p class=\"hint\">Drag to orbit, scroll to zoom, right-drag to pan") +
           (has_shape_toggle(data) ? "; T toggles the garment's shape" : "") + ".</p>\n";
   body += "</section>\n<aside class=\"numbers\">\n";
-  body += verdict_html(data);
-  std::vector<Section> sections =
-      data.report.is_null() ? validation_sections(data) : retarget_sections(data);
-  sections.push_back(warnings_section(data));
+  const PageReport page = read_page_report(data.report, data.certificate);
+  body += verdict_html(page);
+  std::vector<Section> sections = page.run
+                                      ? retarget_sections(*page.run, page.certificate, data.units)
+                                      : validation_sections(page.certificate, data.units);
+  sections.push_back(warnings_section(page));
   for (const Section& s : sections) body += section_html(s);
-  body += documents_html(data);
+  body += documents_html(data, page);
   body += "</aside>\n</main>\n<footer>\n";
   body += fmt::format(
       "<details class=\"licence\"><summary>The 3D view uses three.js {} (MIT "

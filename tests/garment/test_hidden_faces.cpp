@@ -7,7 +7,7 @@
 
 #include "core/mesh/primitives.hpp"
 #include "garment/layers/hidden_faces.hpp"
-#include "retarget/outfit_meshes.hpp"
+#include "garment/outfit_meshes.hpp"
 
 using namespace gr;
 using gr::test::closed_cylinder;

@@ -7,10 +7,10 @@
 #include <catch2/catch.hpp>
 
 #include "core/io/obj_document.hpp"
+#include "core/io/rig_files.hpp"
 #include "core/mesh/primitives.hpp"
 #include "core/mesh/simulation_mesh.hpp"
 #include "garment/fit/no_fit_inference.hpp"
-#include "retarget/scene/scene.hpp"
 #include "test_support.hpp"
 
 using namespace gr;

@@ -111,4 +111,72 @@ inline ReportPageData small_page_scene() {
   return data;
 }
 
+/// A made-up run report holding every part the page reads (report.json's keys).
+inline nlohmann::json sample_report() {
+  return {{"quality", "balanced"},
+          {"seconds",
+           {{"read", 0.01},
+            {"normalize", 0.02},
+            {"shrink", 0.5},
+            {"inflate", 1.25},
+            {"fit", 2.5},
+            {"write", 0.03},
+            {"certify", 0.4},
+            {"total", 4.75}}},
+          {"fit_error", {{"mean", 0.00123}, {"p95", 0.00456}}},
+          {"fit", {{"status", "converged"}, {"newton_iterations", 12}}},
+          {"inflate",
+           {{"status", "snapped"}, {"al_rounds", 2}, {"resets", 0}, {"newton_iterations", 7}}},
+          {"modelled",
+           {{"terms", {"stretch", "contact"}},
+            {"self_contact_where", "everywhere"},
+            {"garment_faces", 960},
+            {"fit_faces", 864},
+            {"avatar_faces_total", 1280},
+            {"avatar_faces_modelled", 640}}},
+          {"ease",
+           {{"fit", "ease"},
+            {"source", "source body"},
+            {"measured_vertices", 400},
+            {"median_ratio", 0.9},
+            {"within_25_percent", 0.75}}},
+          {"inherited_crossings", {{"pairs", 4}, {"still_crossing", 2}, {"attached_pieces", 1}}},
+          {"split_non_manifold_edges", {{"edges", 3}, {"vertex_copies", 6}}},
+          {"pierced_faces",
+           {{"left_out_of_contact", {5, 6, 7}}, {"opened", {6}}, {"bones", {"Hips-Spine"}}}},
+          {"min_distance", {{"avatar_units", 0.00077}}},
+          {"shape",
+           {{"scale", 1.0},
+            {"mean_edge_change", 0.1234},
+            {"p95_edge_change", 0.5},
+            {"area_change", 0.05},
+            {"loop_displacement", 0.01},
+            {"surface_energy_per_area", 0.002}}},
+          {"position", {{"loop_offsets", {0.01, 0.03}}}},
+          {"shrink", {{"mode", "levelset"}, {"depth", 0.04}}},
+          {"peak_memory_mb", 80.4},
+          {"certified", true},
+          {"warnings", {"fit stopped <early> & \"soon\""}}};
+}
+
+/// A made-up certificate of one garment holding every part the page reads.
+inline nlohmann::ordered_json sample_certificate() {
+  return {{"kind", "certificate"},
+          {"counts",
+           {{"garment_avatar_intersections", 0},
+            {"garment_self_intersections", 0},
+            {"garment_garment_intersections", 0}}},
+          {"issues",
+           {{"messages",
+             {{{"code", "CLEARANCE"}, {"severity", "info"}, {"message", "clearance 0.00071"}}}}}},
+          {"garments",
+           {{{"path", "skirt.obj"},
+             {"avatar_intersections", {{"count", 0}}},
+             {"self_intersections", {{"count", 0}}},
+             {"degenerate_faces", {{"count", 0}}},
+             {"avatar_clearance", {{"distance", 0.00071}}},
+             {"near_vertices", nullptr}}}},
+          {"certified", true}};
+}
+
 }  // namespace gr::test

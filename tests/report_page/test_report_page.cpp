@@ -32,27 +32,13 @@ std::vector<std::string> web_addresses(const std::string& text) {
   return found;
 }
 
-nlohmann::json sample_report() {
-  return {{"quality", "balanced"},
-          {"seconds",
-           {{"read", 0.01}, {"shrink", 0.5}, {"inflate", 1.25}, {"fit", 2.5}, {"total", 4.75}}},
-          {"fit_error", {{"mean", 0.00123}, {"p95", 0.00456}}},
-          {"min_distance", {{"avatar_units", 0.00077}}},
-          {"shape", {{"scale", 1.0}, {"mean_edge_change", 0.1234}, {"p95_edge_change", 0.5}}},
-          {"certified", true},
-          {"warnings", {"fit stopped <early> & \"soon\""}}};
-}
-
 }  // namespace
 
 TEST_CASE("the report page is one HTML file carrying its script, licence and scene",
           "[report_page]") {
   gr::ReportPageData data = gr::test::small_page_scene();
-  data.report = sample_report();
-  data.certificate = {{"kind", "certificate"},
-                      {"certified", true},
-                      {"counts", {{"garment_avatar_intersections", 0}}},
-                      {"garments", {{{"avatar_clearance", {{"distance", 0.00071}}}}}}};
+  data.report = gr::test::sample_report();
+  data.certificate = gr::test::sample_certificate();
   const std::string html = gr::report_page_html(data);
 
   SECTION("a single well-formed document") {
@@ -219,7 +205,7 @@ TEST_CASE("the benchmark page embeds its plot and escapes its table", "[report_p
 TEST_CASE("an outfit page has a box per garment, a one-garment page none",
           "[report_page][outfit]") {
   gr::ReportPageData data = gr::test::small_page_scene();
-  data.report = sample_report();
+  data.report = gr::test::sample_report();
   const std::string single = gr::report_page_html(data);
   CHECK(count_of(single, "class=\"garment-toggle\"") == 0);
   CHECK(single.find("id=\"gr-garment-0\"") == std::string::npos);

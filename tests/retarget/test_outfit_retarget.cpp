@@ -12,7 +12,7 @@
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 #include "extremes_support.hpp"
-#include "outfit_meshes.hpp"
+#include "garment/outfit_meshes.hpp"
 #include "retarget/run/progress.hpp"
 #include "retarget/stages/outfit_stage.hpp"
 #include "retarget/stages/read_stage.hpp"

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
-#include "retarget/outfit_meshes.hpp"
+#include "garment/outfit_meshes.hpp"
 
 namespace fs = std::filesystem;
 using gr::test::lines_of;
