@@ -96,6 +96,8 @@ class ParameterOverrides {
   void set(const std::string& name, double value);
   std::optional<double> get(const std::string& name) const;
   bool empty() const { return values_.empty(); }
+  /// The knobs set, by name.
+  const std::map<std::string, double>& values() const { return values_; }
 
   /// Sets every given knob, in parameter_table() order.
   void apply_to(PipelineParameters& parameters) const;

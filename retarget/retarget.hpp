@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/formats/mesh_format.hpp"
 #include "core/skinning/skin_weight_transfer.hpp"
 #include "garment/fit/ease.hpp"
 #include "retarget/outcome.hpp"
@@ -38,8 +39,8 @@ struct RetargetOptions {
   bool frames = false;  ///< write intermediate garment/avatar OBJs
   bool png = false;     ///< also write front.png and side.png beside report.html
   bool quiet = false;
-  /// Written garment format, "obj" or "glb"; empty: the garment's input format.
-  std::string format;
+  /// Written garment format (mesh_formats()); null: the first garment's input format.
+  const MeshFormat* format = nullptr;
   /// An outfit written as GLB: a file per garment instead of one file with a mesh each.
   bool split = false;
   /// An outfit: also write the avatar without the faces every garment hides

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <optional>
 #include <random>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -21,6 +22,7 @@
 #include "core/common/stopwatch.hpp"
 #include "core/io/atomic_file.hpp"
 #include "retarget/outcome.hpp"
+#include "retarget/retarget_options_json.hpp"
 #include "retarget/run/output_folder.hpp"
 
 namespace gr {
@@ -32,7 +34,7 @@ namespace {
 constexpr const char* kTemporaryPrefix = ".tmp-";
 constexpr const char* kJobFile = "job.json";
 constexpr const char* kLogFile = "log.txt";
-/// Beside a job's temporary folder while it runs: its typed options (job_options).
+/// Beside a job's temporary folder while it runs: its typed options (retarget_options_to_json).
 constexpr const char* kOptionsSuffix = ".options.json";
 
 /// Runs `arguments` in `folder` (the child's working folder) with its output in `log_path`.
@@ -151,6 +153,8 @@ std::string status_for_exit_code(int exit_code) {
 }
 
 JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
+  if (!job.retarget)
+    throw std::logic_error("run_batch_job: job \"" + job.id + "\" has no typed options");
   const fs::path out(runner.out_dir);
   const fs::path destination = out / job.id;
   std::string key;
@@ -175,8 +179,10 @@ JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner) {
   // job runs inside its folder and writes to ".": the paths its reports record are the
   // same wherever and under whichever temporary name it ran.
   const fs::path options_path = folder.string() + kOptionsSuffix;
+  RetargetOptions typed = *job.retarget;
+  typed.threads = std::max(1, runner.threads);
   write_file_atomically(options_path.string(), [&](std::ostream& file) {
-    file << job_options(job, std::max(1, runner.threads)).dump(2) << '\n';
+    file << retarget_options_to_json(typed).dump(2) << '\n';
   });
   const std::vector<std::string> arguments = {fs::absolute(runner.program).string(), "run-job",
                                               fs::absolute(options_path).string()};

@@ -33,14 +33,16 @@ struct JobRunner {
 
 /// Runs `job` unless out_dir/<id>/job.json records certified outputs (exit code 0 or 7 and
 /// a certified certificate.json) for the same job_key(): then returns it as reused.
-/// Otherwise runs `program retarget ... --out .` in a child process working in a fresh
+/// Otherwise runs `program run-job OPTIONS` (the job's typed options, BatchJob::retarget
+/// with the runner's threads, written as JSON) in a child process working in a fresh
 /// out_dir/.tmp-<id>-<pid>-<n>-<random> (its stdout and stderr in log.txt there), so the
 /// paths its reports record do not depend on the temporary name; writes job.json
 /// beside its outputs, and swaps the folder into out_dir/<id> with one rename, so that
 /// out_dir/<id> is always either the previous complete result or the new one. The child
 /// is killed when the calling thread ends. A failing or crashing job is an outcome, not
 /// an exception; its outputs and log are kept for inspection.
-/// @throw OutputError when out_dir cannot be written.
+/// @pre job.retarget is set (check_batch_options).
+/// @throw OutputError when out_dir cannot be written; std::logic_error without typed options.
 JobOutcome run_batch_job(const BatchJob& job, const JobRunner& runner);
 
 /// The outcome recorded in out_dir/<id>/job.json; status "missing" when there is none.

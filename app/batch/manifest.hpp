@@ -1,9 +1,12 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "retarget/retarget.hpp"
 
 namespace gr {
 
@@ -17,6 +20,9 @@ struct BatchJob {
   /// Every other key as its retarget option's long name without dashes ("w-fit"), with
   /// its value (a string, number or boolean); sorted by name.
   nlohmann::json options = nlohmann::json::object();
+  /// The line parsed into typed retarget options once, before any job runs
+  /// (check_batch_options); the job runs these, with the batch's out and threads.
+  std::optional<RetargetOptions> retarget;
 };
 
 /// The manifest keys naming input files, each the retarget option of the same name with
@@ -39,9 +45,9 @@ const std::vector<std::string>& batch_reserved_options();
 ///        duplicate ids, missing keys and values of the wrong type.
 std::vector<BatchJob> read_manifest(const std::string& manifest_path);
 
-/// The job's retarget options as typed values by long name, as `garment-retarget run-job`
-/// reads them (retarget_options_from_json): each input key with its resolved path, each
-/// option, and the batch's own: out ".", write-in-place and `threads`.
+/// The job's retarget options by long name, as retarget_options_from_json parses them into
+/// BatchJob::retarget: each input key with its resolved path, each option, and the batch's
+/// own: out ".", write-in-place and `threads`.
 nlohmann::json job_options(const BatchJob& job, int threads);
 
 /// The job's skip key: SHA-256 over the program version, the SHA-256 of each input file's

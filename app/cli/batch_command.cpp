@@ -21,12 +21,12 @@ struct BatchCommandOptions {
 
 }  // namespace
 
-void check_batch_options(const std::string& manifest, const std::vector<BatchJob>& jobs) {
+void check_batch_options(const std::string& manifest, std::vector<BatchJob>& jobs) {
   CLI::App root;
   int unused_exit_code = 0;
   add_retarget_command(root, unused_exit_code);
   const CLI::App* retarget = root.get_subcommand("retarget");
-  for (const BatchJob& job : jobs) {
+  for (BatchJob& job : jobs) {
     for (const auto& [name, value] : job.options.items()) {
       const CLI::Option* option = retarget->get_option_no_throw("--" + name);
       if (option == nullptr)
@@ -41,9 +41,9 @@ void check_batch_options(const std::string& manifest, const std::vector<BatchJob
                               : fmt::format("\"{}\" needs a value, not a boolean", name));
     }
     // The whole line parsed into typed options, so that every value is checked before any
-    // job runs (the batch sets the output folder itself).
+    // job runs (the batch sets the output folder and the threads itself).
     try {
-      retarget_options_from_json(job_options(job, 1));
+      job.retarget = retarget_options_from_json(job_options(job, 1));
     } catch (const CLI::ParseError& e) {
       throw InputError(manifest, job.line, e.what());
     }
@@ -76,7 +76,7 @@ void add_batch_command(CLI::App& root, int& exit_code) {
                   "The garment-retarget executable each job runs (default: this one)");
   cmd->add_flag("--quiet", options->batch.quiet, "No progress on stderr");
   cmd->footer(
-      "Each job runs `garment-retarget retarget` in its own process, writing into a\n"
+      "Each job runs retarget in its own process, writing into a\n"
       "temporary folder that replaces OUT/<id> in one rename when the job ends: OUT/<id>\n"
       "holds its outputs, log.txt (the job's output) and job.json (status, exit code, time,\n"
       "error, and the key: SHA-256 of the input files' bytes and the options). A job whose\n"
@@ -84,7 +84,7 @@ void add_batch_command(CLI::App& root, int& exit_code) {
       "resumes after a crash or a kill. Exit codes: 0 every job certified, 2 bad manifest,\n"
       "5 OUT not writable, 8 some jobs did not end certified (see OUT/summary.csv).");
   cmd->callback([options, &exit_code]() {
-    const std::vector<BatchJob> jobs = read_manifest(options->manifest);
+    std::vector<BatchJob> jobs = read_manifest(options->manifest);
     check_batch_options(options->manifest, jobs);
     if (options->batch.program.empty()) options->batch.program = current_program_path();
     const BatchResult result = run_batch(jobs, options->batch);

@@ -71,8 +71,8 @@ void add_retarget_command(CLI::App& root, int& exit_code);
 void add_validate_command(CLI::App& root, int& exit_code);
 void add_shrink_command(CLI::App& root, int& exit_code);
 void add_batch_command(CLI::App& root, int& exit_code);
-/// `run-job FILE`: retarget with the typed options of a JSON file (retarget_options_from_json),
-/// as the batch runs each job; not listed in --help.
+/// `run-job FILE`: retarget with the typed options of a JSON file, as the batch wrote them
+/// (retarget_options_to_json), read field by field with no second parse; not listed in --help.
 void add_run_job_command(CLI::App& root, int& exit_code);
 
 /// Retarget's options from typed values, by their long names ('_' or '-' between words):
@@ -83,9 +83,10 @@ void add_run_job_command(CLI::App& root, int& exit_code);
 RetargetOptions retarget_options_from_json(const nlohmann::json& object);
 
 /// Checks that each manifest option of `jobs` names a retarget option, a flag given as a
-/// boolean and any other option given a value.
+/// boolean and any other option given a value, and parses each job's line into its typed
+/// options (BatchJob::retarget), the only parse the line gets.
 /// @throw InputError naming `manifest` and the job's line otherwise.
-void check_batch_options(const std::string& manifest, const std::vector<BatchJob>& jobs);
+void check_batch_options(const std::string& manifest, std::vector<BatchJob>& jobs);
 
 /// The path of the running executable (/proc/self/exe).
 std::string current_program_path();

@@ -6,8 +6,10 @@
 
 #include "app/cli/commands.hpp"
 #include "core/common/errors.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "retarget/outcome.hpp"
 #include "retarget/retarget.hpp"
+#include "retarget/retarget_options_json.hpp"
 
 namespace gr {
 
@@ -21,6 +23,7 @@ struct RetargetBinding {
   std::string shrink_mode;
   std::string quality = to_string(Quality::kBalanced);
   std::string fit_mode;
+  std::string format;
 
   RetargetOptions typed() const {
     RetargetOptions typed_options = options;
@@ -28,6 +31,7 @@ struct RetargetBinding {
     if (!shrink_mode.empty()) typed_options.shrink_mode = parse_shrink_mode(shrink_mode);
     if (!fit_mode.empty()) typed_options.fit_mode = parse_fit_mode(fit_mode);
     typed_options.quality = parse_quality(quality);
+    if (!format.empty()) typed_options.format = &mesh_format_named(format);
     return typed_options;
   }
 };
@@ -47,10 +51,10 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
                   "Garment vertex ids (0-based) whose faces hang free instead of fitting; "
                   "inferred when not given (see --source-body); in an outfit, one per garment "
                   "(a garment without a list then fits everywhere)");
-  cmd->add_option("--format", options->format,
+  cmd->add_option("--format", binding.format,
                   "Written garment format (default: the garment's input format, glb for .glb "
                   "and .gltf)")
-      ->check(CLI::IsMember({"obj", "glb"}));
+      ->check(CLI::IsMember(mesh_format_names()));
   cmd->add_flag("--split", options->split,
                 "Outfit written as GLB: a file per garment (OUT/<garment>.glb) instead of "
                 "OUT/outfit.glb with a mesh and skin per garment");
@@ -165,7 +169,9 @@ void add_run_job_command(CLI::App& root, int& exit_code) {
   CLI::App* cmd = root.add_subcommand(
       "run-job", "One batch job: retarget with the typed options of a JSON file");
   cmd->group("");  // the batch's own: not listed in --help
-  cmd->add_option("options", *path, "JSON object of retarget options by long name")->required();
+  cmd->add_option("options", *path,
+                  "JSON object of typed retarget options (retarget_options_to_json)")
+      ->required();
   cmd->callback([path, &exit_code]() {
     std::ifstream in(*path);
     if (!in) throw InputError(*path, 0, "cannot open the job's options");
@@ -175,7 +181,13 @@ void add_run_job_command(CLI::App& root, int& exit_code) {
     } catch (const nlohmann::json::parse_error& e) {
       throw InputError(*path, 0, std::string("not a JSON object: ") + e.what());
     }
-    exit_code = retarget_and_print(retarget_options_from_json(object));
+    RetargetOptions options;
+    try {
+      options = retarget_options_from_typed_json(object);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(*path, 0, e.what());
+    }
+    exit_code = retarget_and_print(options);
   });
 }
 

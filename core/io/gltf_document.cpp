@@ -301,13 +301,6 @@ void add_influences(const tinygltf::Model& model, const tinygltf::Primitive& pri
 
 }  // namespace
 
-bool is_gltf_path(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".glb" || extension == ".gltf";
-}
-
 std::vector<std::string> gltf_mesh_names(const std::string& path) {
   const tinygltf::Model model = load_model(path);
   const NodeGraph graph = node_graph(model, path);
@@ -568,11 +561,6 @@ GltfAsset read_gltf_meshes(const std::string& path, const std::vector<std::strin
   if (gltf.skin && gltf.skin->weights.cols() > 0 && gltf.skin->weights.sum() == 0.0)
     gltf.skin->weights.resize(0, 0);
   return asset;
-}
-
-ObjDocument read_surface_document(const std::string& path, const std::string& mesh_name) {
-  if (is_gltf_path(path)) return read_gltf(path, mesh_name).document;
-  return read_obj(path);
 }
 
 Skeleton skeleton_of_skin(const SkinBinding& skin, const std::string& path) {

@@ -56,9 +56,6 @@ struct GltfAsset {
   GltfDocument gltf;
 };
 
-/// Whether `path` names a glTF file by its extension (`.glb` or `.gltf`, any case).
-bool is_gltf_path(const std::string& path);
-
 /// Reads one mesh of a glTF 2.0 file (binary `.glb` or JSON `.gltf`): the node named or
 /// whose mesh is named `mesh_name`, else the first node with a skinned mesh, else the first
 /// node with a mesh, in scene order. Every TRIANGLES primitive is merged (positions in
@@ -88,11 +85,6 @@ std::vector<std::string> gltf_mesh_names(const std::string& path);
 /// The names of the meshes read_gltf_meshes reads with no name and `whole_skin`.
 /// @throw InputError as read_gltf for a file that cannot be parsed.
 std::vector<std::string> gltf_skin_mesh_names(const std::string& path);
-
-/// Reads a surface of either format: `read_gltf(path, mesh_name).document` for `.glb` and
-/// `.gltf`, else `read_obj(path)`.
-/// @throw InputError as the reader used.
-ObjDocument read_surface_document(const std::string& path, const std::string& mesh_name = "");
 
 /// The skeleton of a skin: joint world positions (#J×3) and one bone per joint with a
 /// parent (parent, joint).

@@ -19,8 +19,8 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-from ._core import (InputError, Outcome, OutputError, RetargetOptions, RetargetResult, UsageError, outcome_names,
-                    parameters, read_mesh, run_command, run_retarget, version)
+from ._core import (InputError, Outcome, OutputError, RetargetOptions, RetargetResult, UsageError, formats,
+                    outcome_names, parameters, read_mesh, run_command, run_retarget, version)
 
 __all__ = [
     "InputError",
@@ -30,6 +30,7 @@ __all__ = [
     "RetargetResult",
     "UsageError",
     "batch",
+    "formats",
     "parameters",
     "program_path",
     "read_mesh",

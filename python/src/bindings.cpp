@@ -17,6 +17,7 @@
 #include "app/batch/batch_run.hpp"
 #include "app/cli/commands.hpp"
 #include "core/common/errors.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/io/obj_document.hpp"
 #include "retarget/outcome.hpp"
 #include "retarget/parameters.hpp"
@@ -120,7 +121,7 @@ const gr::BatchJob& find_job(const std::vector<gr::BatchJob>& jobs, const std::s
 
 /// The ids of a manifest's jobs, in order, once the manifest is read and checked.
 std::vector<std::string> manifest_ids(const std::string& manifest) {
-  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest);
+  std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest);
   gr::check_batch_options(manifest, jobs);
   std::vector<std::string> ids;
   for (const gr::BatchJob& job : jobs) ids.push_back(job.id);
@@ -141,7 +142,8 @@ nb::dict outcome_dict(const gr::JobOutcome& outcome) {
 /// One job of a manifest, exactly as `garment-retarget batch` runs it.
 nb::dict run_job(const std::string& manifest, const std::string& id, const std::string& out_dir,
                  const std::string& program, int threads) {
-  const std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest);
+  std::vector<gr::BatchJob> jobs = gr::read_manifest(manifest);
+  gr::check_batch_options(manifest, jobs);
   const gr::BatchJob& job = find_job(jobs, manifest, id);
   gr::JobOutcome outcome;
   {
@@ -183,6 +185,22 @@ nb::list parameters() {
   return rows;
 }
 
+/// The registered mesh formats (mesh_formats()), as dicts: name (a `format=` value),
+/// extensions, and whether a file holds named meshes, several written meshes and skins.
+nb::list formats() {
+  nb::list rows;
+  for (const gr::MeshFormat* format : gr::mesh_formats()) {
+    nb::dict d;
+    d["name"] = format->name;
+    d["extensions"] = format->extensions;
+    d["named_meshes"] = format->named_meshes;
+    d["several_meshes"] = format->several_meshes;
+    d["skinned"] = format->skinned;
+    rows.append(d);
+  }
+  return rows;
+}
+
 /// Runs the retarget pipeline on typed options in this process, without the GIL; Ctrl-C
 /// and SIGTERM stop it (KeyboardInterrupt). A run stopped by its limits returns
 /// Outcome::kLimitReached with the reason as its message.
@@ -215,6 +233,9 @@ NB_MODULE(_core, m) {
   for (const gr::OutcomeRow& row : gr::outcome_table())
     outcomes[nb::int_(row.exit_code)] = row.name;
   m.attr("outcome_names") = outcomes;
+  m.def("formats", &formats,
+        "The mesh formats: name (a format= value), extensions, named_meshes, several_meshes, "
+        "skinned.");
   m.def("parameters", &parameters,
         "Every knob a run may set: name, option (the keyword), type, unit, help, presets.");
   nb::enum_<gr::Outcome> outcome(m, "Outcome", "How a command ends; each value is its exit code.");
@@ -234,8 +255,11 @@ NB_MODULE(_core, m) {
       .def_ro("quiet", &gr::RetargetOptions::quiet)
       .def_prop_ro("garment", [](const gr::RetargetOptions& o) { return o.inputs.garment; })
       .def_prop_ro("avatar", [](const gr::RetargetOptions& o) { return o.inputs.avatar; })
-      .def_prop_ro("quality",
-                   [](const gr::RetargetOptions& o) { return gr::to_string(o.quality); });
+      .def_prop_ro("quality", [](const gr::RetargetOptions& o) { return gr::to_string(o.quality); })
+      .def_prop_ro("format", [](const gr::RetargetOptions& o) -> nb::object {
+        if (o.format == nullptr) return nb::none();
+        return nb::str(o.format->name.c_str());
+      });
   nb::class_<gr::RetargetResult>(m, "RetargetResult", "How a retarget run ended.")
       .def_ro("status", &gr::RetargetResult::status)
       .def_prop_ro("exit_code",

@@ -4,7 +4,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-SCENE = ROOT / "tools" / "scenes" / "dress_form"
+SCENE = ROOT / "scenes" / "dress_form"
 
 
 @pytest.fixture(scope="session")

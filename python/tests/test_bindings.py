@@ -191,3 +191,16 @@ def test_retarget_takes_a_list_of_garments_as_an_outfit(tmp_path):
     radius = [np.median(np.hypot(V[:, 0], V[:, 1])) for V, _ in result["garments"]]
     assert radius[0] > radius[1] > 0.31
     assert (tmp_path / "run" / "outer.obj").exists() and (tmp_path / "run" / "inner.obj").exists()
+
+
+def test_formats_come_from_the_registry_and_check_format(scene, tmp_path):
+    formats = gr.formats()
+    names = [f["name"] for f in formats]
+    assert "obj" in names and "glb" in names
+    assert all(f["extensions"] and f["extensions"][0].startswith(".") for f in formats)
+    common = dict(garment=scene / "garment.obj", avatar=scene / "avatar.obj", out=tmp_path / "f")
+    assert gr.retarget_options(**common).format is None
+    for name in names:
+        assert gr.retarget_options(**common, format=name).format == name
+    with pytest.raises(gr.UsageError, match="--format"):
+        gr.retarget_options(**common, format="stl")

@@ -9,6 +9,7 @@
 #include "core/common/errors.hpp"
 #include "core/energies/fit_energy.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/mesh/simulation_mesh.hpp"
@@ -123,9 +124,9 @@ namespace {
 SimulationMesh read_one_source_body(const std::string& path,
                                     const std::vector<std::string>& named_meshes,
                                     const Scene& scene) {
-  ObjDocument document;
-  if (is_gltf_path(path)) {
-    std::vector<std::string> meshes = named_meshes;
+  const MeshFormat& format = mesh_format_for_path(path);
+  std::vector<std::string> meshes = named_meshes;
+  if (format.named_meshes) {
     std::error_code error;
     std::vector<std::string> garment_meshes;  // of the garments read from this file
     for (const GarmentLayer& layer : scene.layers)
@@ -138,13 +139,10 @@ SimulationMesh read_one_source_body(const std::string& path,
       if (meshes.empty())
         throw InputError(path, 0, "has no mesh but the garments to be the source body");
     }
-    document = read_gltf_meshes(path, meshes).document;
-  } else {
-    if (!named_meshes.empty())
-      throw InputError(path, 0, "--source-body-mesh is for glTF files only");
-    document = read_obj(path);
+  } else if (!named_meshes.empty()) {
+    throw InputError(path, 0, "--source-body-mesh is for glTF files only");
   }
-  SimulationMesh read = make_simulation_mesh(document);
+  SimulationMesh read = make_simulation_mesh(format.read(path, {meshes, true}).document);
   if (read.mesh.faces.rows() == 0)
     throw InputError(path, 0, "source body has no (non-degenerate) triangle");
   return read;

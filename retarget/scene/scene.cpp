@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/common/errors.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/io/input_file.hpp"
 #include "core/skeleton/skin_matching.hpp"
 
@@ -26,15 +27,12 @@ SimulationMesh load_surface(const std::string& path, const std::vector<std::stri
                             const char* role, ObjDocument& document,
                             std::optional<GltfDocument>& gltf, std::vector<std::string>& warnings) {
   const bool avatar = std::string(role) == "avatar";
-  if (is_gltf_path(path)) {
-    GltfAsset asset = read_gltf_meshes(path, mesh_names, avatar);
-    document = std::move(asset.document);
-    gltf = std::move(asset.gltf);
-  } else {
-    if (!mesh_names.empty())
-      throw InputError(path, 0, fmt::format("--{}-mesh is for glTF files only", role));
-    document = read_obj(path);
-  }
+  const MeshFormat& format = mesh_format_for_path(path);
+  if (!format.named_meshes && !mesh_names.empty())
+    throw InputError(path, 0, fmt::format("--{}-mesh is for glTF files only", role));
+  MeshFileContents read = format.read(path, {mesh_names, avatar});
+  document = std::move(read.document);
+  gltf = std::move(read.gltf);
   warnings.insert(warnings.end(), document.warnings.begin(), document.warnings.end());
   SimulationMesh sim = make_simulation_mesh(document);
   if (sim.mesh.faces.rows() == 0)
@@ -267,15 +265,13 @@ void load_garments(const ScenePaths& paths, Scene& scene) {
       std::optional<Eigen::Matrix4d> to_first_frame;
       std::error_code error;
       const bool own_body = !more.source_body.empty() && !paths.source_body.empty() &&
-                            !is_gltf_path(more.source_body);
+                            !mesh_format_for_path(more.source_body).named_meshes;
       if (own_body && std::filesystem::equivalent(more.source_body, paths.source_body, error)) {
         to_first_frame = Eigen::Matrix4d::Identity();
       } else if (own_body) {
         if (!first_body)  // read once for every garment
-          first_body =
-              is_gltf_path(paths.source_body)
-                  ? read_gltf_meshes(paths.source_body, paths.source_body_meshes).document.positions
-                  : read_surface_document(paths.source_body).positions;
+          first_body = read_mesh_file(paths.source_body, {paths.source_body_meshes, true})
+                           .document.positions;
         to_first_frame = body_frame_onto(more.source_body, *first_body);
       }
       if (!to_first_frame && !more.source_skeleton.empty()) {

@@ -8,6 +8,7 @@
 
 #include "core/common/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "garment/layers/layer_order.hpp"
 #include "garment/repairs/pierced_faces.hpp"
 
@@ -39,21 +40,20 @@ void write_hidden_faces(const std::string& path, const std::vector<int>& faces,
   });
 }
 
-/// Writes the avatar without `faces` (sorted document faces), skinned as it was.
+/// Writes the avatar without `faces` (sorted document faces) in its input's format,
+/// skinned as it was where the format holds a skin; returns the file's name.
 std::string write_avatar_without(const std::string& dir, const Scene& scene,
                                  const std::vector<int>& faces) {
   ObjDocument document = scene.avatar_document;
   std::optional<GltfDocument> gltf = scene.avatar_gltf;
   remove_document_faces(document, gltf ? &*gltf : nullptr, faces);
-  if (!gltf) {
-    const std::string path = (fs::path(dir) / "avatar.obj").string();
-    write_obj(path, document, document.positions);
-    return "avatar.obj";
-  }
-  const std::optional<SkinBinding> skin = scene.avatar_skin;
-  write_glb((fs::path(dir) / "avatar.glb").string(), document, &*gltf, document.positions,
-            skin ? &*skin : nullptr);
-  return "avatar.glb";
+  const MeshFormat& format = mesh_format_for_path(scene.avatar_document.source_path);
+  const SkinBinding* skin = format.skinned && scene.avatar_skin ? &*scene.avatar_skin : nullptr;
+  const std::string name = "avatar" + format.written_extension();
+  format.write((fs::path(dir) / name).string(),
+               {GlbMesh{"", &document, gltf ? &*gltf : nullptr, document.positions, skin}},
+               {false, false});
+  return name;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/skeleton/skin_matching.hpp"
 #include "garment/repairs/pierced_faces.hpp"
 
@@ -99,77 +100,95 @@ std::optional<SkinBinding> garment_skin(const WriteInput& input, const WriteOpti
   return skin;
 }
 
-/// Writes the garment (normalized #Vg×3) as a GLB in the avatar's frame and units, skinned
-/// over the avatar's skeleton when the avatar has one.
-void write_garment_glb(const WriteInput& input, const WriteOptions& options, WriteOutput& out,
-                       Progress& progress) {
-  const Scene& scene = input.scene;
-  const std::string path = (fs::path(input.out_dir) / out.file_name).string();
-  const MatrixX3d positions = document_positions(scene, input.normalized, input.garment);
-  const GltfDocument* source = scene.garment_gltf ? &*scene.garment_gltf : nullptr;
-  if (!source && !scene.garment_document.material_libraries.empty())
-    progress.warn("the OBJ garment's materials are not carried into the GLB (UVs are)");
-  const std::optional<SkinBinding> skin = garment_skin(input, options, out, progress);
-  write_glb(path, scene.garment_document, source, positions, skin ? &*skin : nullptr);
+/// Warns that an OBJ garment's material files stay behind in a format that keeps none.
+void warn_materials_left(const MeshFormat& format, const ObjDocument& document,
+                         const GltfDocument* source, const std::string& garment,
+                         Progress& progress) {
+  if (format.material_files || source || document.material_libraries.empty()) return;
+  progress.warn(fmt::format("{}the OBJ garment's materials are not carried into the {} (UVs are)",
+                            garment.empty() ? "" : garment + ": ", format.label));
 }
 
-/// Writes each layer of an outfit: one GLB with a mesh each (or, split, a GLB each), or an
-/// OBJ each.
-void write_outfit(const WriteInput& input, const WriteOptions& options, bool glb, WriteOutput& out,
-                  Progress& progress) {
+/// Writes `meshes` into out_dir/file_name in `format`, with its warnings.
+void write_meshes(const WriteInput& input, const WriteOptions& options, const MeshFormat& format,
+                  const std::string& file_name, const std::vector<GlbMesh>& meshes,
+                  bool copy_materials, Progress& progress) {
+  const std::string path = (fs::path(input.out_dir) / file_name).string();
+  for (const std::string& warning :
+       format.write(path, meshes, {copy_materials, options.allow_external_assets}))
+    progress.warn(warning);
+}
+
+/// Writes the garment (normalized #Vg×3) in the avatar's frame and units, skinned over the
+/// avatar's skeleton when the format holds a skin and the avatar has one.
+void write_garment(const WriteInput& input, const WriteOptions& options, const MeshFormat& format,
+                   WriteOutput& out, Progress& progress) {
+  const Scene& scene = input.scene;
+  const MatrixX3d positions = document_positions(scene, input.normalized, input.garment);
+  const GltfDocument* source = scene.garment_gltf ? &*scene.garment_gltf : nullptr;
+  warn_materials_left(format, scene.garment_document, source, "", progress);
+  std::optional<SkinBinding> skin;
+  if (format.skinned) skin = garment_skin(input, options, out, progress);
+  write_meshes(input, options, format, out.file_name,
+               {GlbMesh{"", &scene.garment_document, source, positions, skin ? &*skin : nullptr}},
+               true, progress);
+}
+
+/// Whether a material file this layer names came from another garment already: the first
+/// one's is kept (with a warning), not copied again.
+bool shares_material_library(const GarmentLayer& layer,
+                             std::map<std::string, std::string>& library_from, Progress& progress) {
+  bool shared_library = false;
+  for (const std::string& library : layer.document.material_libraries) {
+    const auto [it, added] = library_from.emplace(library, layer.path);
+    if (!added && it->second != layer.path) {
+      shared_library = true;
+      progress.warn(
+          fmt::format("{} and {} both name the material file {}: the first one's "
+                      "is kept, and both garments use it",
+                      it->second, layer.path, library));
+    }
+  }
+  return shared_library;
+}
+
+/// Writes each layer of an outfit: one file with a mesh each when the format holds several
+/// (unless split), else a file each.
+void write_outfit(const WriteInput& input, const WriteOptions& options, const MeshFormat& format,
+                  WriteOutput& out, Progress& progress) {
   const Scene& scene = input.scene;
   const MatrixX3d positions = document_positions(scene, input.normalized, input.garment);
   std::optional<SkinBinding> skin;
-  if (glb) skin = garment_skin(input, options, out, progress);
+  if (format.skinned) skin = garment_skin(input, options, out, progress);
+  const bool one_file = format.several_meshes && !options.split;
+  const std::string outfit_file = "outfit" + format.written_extension();
   std::vector<GlbMesh> meshes;
   std::vector<SkinBinding> skins(scene.layers.size());
   std::map<std::string, std::string> library_from;  // material file -> the garment it came from
   for (std::size_t k = 0; k < scene.layers.size(); ++k) {
     const GarmentLayer& layer = scene.layers[k];
-    const MatrixX3d own = positions.middleRows(layer.first_position, layer.position_count);
-    const std::string& stem = layer.file_stem;
-    if (!glb) {
-      out.garments.push_back({stem + ".obj", ""});
-      bool shared_library = false;
-      for (const std::string& library : layer.document.material_libraries) {
-        const auto [it, added] = library_from.emplace(library, layer.path);
-        if (!added && it->second != layer.path) {
-          shared_library = true;
-          progress.warn(
-              fmt::format("{} and {} both name the material file {}: the first one's "
-                          "is kept, and both garments use it",
-                          it->second, layer.path, library));
-        }
-      }
-      if (!shared_library)
-        for (const auto& warning :
-             copy_material_files(layer.document, input.out_dir, options.allow_external_assets))
-          progress.warn(warning);
-      write_obj((fs::path(input.out_dir) / (stem + ".obj")).string(), layer.document, own);
-      continue;
-    }
-    if (!layer.gltf && !layer.document.material_libraries.empty())
-      progress.warn(
-          fmt::format("{}: the OBJ garment's materials are not carried into the GLB "
-                      "(UVs are)",
-                      layer.path));
+    const GltfDocument* source = layer.gltf ? &*layer.gltf : nullptr;
+    const std::string file = layer.file_stem + format.written_extension();
+    out.garments.push_back(one_file ? WrittenGarment{outfit_file, layer.name}
+                                    : WrittenGarment{file, ""});
+    const bool shared_library =
+        format.material_files && shares_material_library(layer, library_from, progress);
+    warn_materials_left(format, layer.document, source, layer.path, progress);
     if (skin) {
       skins[k] = *skin;
       skins[k].weights = skin->weights.middleCols(layer.first_position, layer.position_count);
     }
-    GlbMesh mesh{layer.name, &layer.document, layer.gltf ? &*layer.gltf : nullptr, own,
+    GlbMesh mesh{layer.name, &layer.document, source,
+                 positions.middleRows(layer.first_position, layer.position_count),
                  skin ? &skins[k] : nullptr};
-    if (options.split) {
-      out.garments.push_back({stem + ".glb", ""});
-      write_glb_meshes((fs::path(input.out_dir) / (stem + ".glb")).string(), {mesh});
-    } else {
-      out.garments.push_back({"outfit.glb", layer.name});
+    if (one_file)
       meshes.push_back(std::move(mesh));
-    }
+    else
+      write_meshes(input, options, format, file, {mesh}, !shared_library, progress);
   }
   if (!meshes.empty()) {
-    out.file_name = "outfit.glb";
-    write_glb_meshes((fs::path(input.out_dir) / out.file_name).string(), meshes);
+    out.file_name = outfit_file;
+    write_meshes(input, options, format, out.file_name, meshes, true, progress);
   }
 }
 
@@ -248,27 +267,15 @@ WriteOutput run_write(const WriteInput& input, const WriteOptions& options, Prog
   WriteOutput out;
   out.opened_document_faces = open_pierced_faces(input, options, progress);
   const StageTimer timer;
-  const bool glb =
-      options.format.empty() ? input.scene.garment_gltf.has_value() : options.format == "glb";
+  const MeshFormat& format =
+      options.format ? *options.format : mesh_format_for_path(input.scene.layers.front().path);
   if (input.scene.layers.size() > 1) {
-    write_outfit(input, options, glb, out, progress);
-    out.seconds = timer.seconds();
-    return out;
-  }
-  if (glb) {
-    out.file_name = "garment.glb";
+    write_outfit(input, options, format, out, progress);
+  } else {
+    out.file_name = "garment" + format.written_extension();
     out.garments = {{out.file_name, ""}};
-    write_garment_glb(input, options, out, progress);
-    out.seconds = timer.seconds();
-    return out;
+    write_garment(input, options, format, out, progress);
   }
-  out.file_name = "garment.obj";
-  out.garments = {{out.file_name, ""}};
-  for (const auto& warning : copy_material_files(input.scene.garment_document, input.out_dir,
-                                                 options.allow_external_assets))
-    progress.warn(warning);
-  write_garment_obj((fs::path(input.out_dir) / out.file_name).string(), input.scene,
-                    input.normalized, input.garment);
   out.seconds = timer.seconds();
   return out;
 }

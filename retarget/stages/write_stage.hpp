@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/energies/distance_field.hpp"
+#include "core/io/formats/mesh_format.hpp"
 #include "core/skinning/skin_weight_transfer.hpp"
 #include "retarget/report.hpp"
 #include "retarget/run/progress.hpp"
@@ -25,7 +26,8 @@ struct WriteInput {
 };
 
 struct WriteOptions {
-  std::string format;  ///< "obj" or "glb"; empty: the garment's input format
+  /// The written garment's format (mesh_formats()); null: the first garment's input format.
+  const MeshFormat* format = nullptr;
   /// An outfit written as GLB: a file per garment instead of one with a mesh each.
   bool split = false;
   bool allow_external_assets = false;
@@ -42,8 +44,9 @@ struct WrittenGarment {
 };
 
 struct WriteOutput {
-  /// One garment: "garment.obj" or "garment.glb"; an outfit: "outfit.glb", or empty when
-  /// each garment has its file (see garments).
+  /// One garment: "garment" with its format's extension ("garment.obj"); an outfit:
+  /// "outfit.glb" for a format holding several meshes, or empty when each garment has its
+  /// file (see garments).
   std::string file_name;
   /// Per layer (Scene::layers' order), where it was written.
   std::vector<WrittenGarment> garments;
@@ -54,13 +57,13 @@ struct WriteOutput {
   double seconds = 0.0;
 };
 
-/// Write: the garment in the avatar's frame and units,
-/// An outfit (several layers) is written as one GLB with a mesh (and skin) per garment,
-/// named by its layer, or with options.split, or as OBJ, as a file per garment
-/// (`<layer name>.glb|obj`). as the input's document (vertex
-/// order, UVs, groups, materials): an OBJ with its material files, or a GLB skinned over
-/// the avatar's skeleton when the avatar has one. Pierced faces still meeting the avatar
-/// are opened first, so that what is written is free of it.
+/// Write: the garment in the avatar's frame and units, in options.format, as the input's
+/// document (vertex order, UVs, groups, materials): an OBJ with its material files, or a
+/// GLB skinned over the avatar's skeleton when the avatar has one. An outfit (several
+/// layers) is written as one file with a mesh (and skin) per garment, named by its layer,
+/// in a format that holds several meshes unless options.split, else as a file per garment
+/// (`<layer file stem>.<extension>`). Pierced faces still meeting the avatar are opened
+/// first, so that what is written is free of it.
 /// @throw OutputError when a file cannot be written.
 WriteOutput run_write(const WriteInput& input, const WriteOptions& options, Progress& progress);
 

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/common/errors.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
@@ -193,7 +194,7 @@ TEST_CASE("outfit: written as one GLB with a mesh per garment, or a GLB each whe
           "[pipeline][outfit][gltf]") {
   const NestedSleeves scene = test::write_nested_sleeves(test::fresh_temp_dir("outfit_glb"));
   RetargetOptions options = outfit_options(scene, {0, 1, 2});
-  options.format = "glb";
+  options.format = &mesh_format_named("glb");
   SECTION("one file") {
     const RetargetResult result = run_retarget(options);
     INFO(result.message);

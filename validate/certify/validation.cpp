@@ -8,6 +8,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/common/errors.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "validate/checks/degenerate_faces.hpp"
 #include "validate/report/file_digest.hpp"
 
@@ -169,9 +170,10 @@ CheckedFile read_checked_file(const std::string& path, const std::string& mesh_n
 }
 
 CheckedFile read_checked_avatar(const std::string& path, const std::vector<std::string>& meshes) {
-  if (is_gltf_path(path)) return checked_document(path, read_gltf_meshes(path, meshes).document);
-  if (!meshes.empty()) throw InputError(path, 0, "--avatar-mesh is for glTF files only");
-  return checked_document(path, read_obj(path));
+  const MeshFormat& format = mesh_format_for_path(path);
+  if (!format.named_meshes && !meshes.empty())
+    throw InputError(path, 0, "--avatar-mesh is for glTF files only");
+  return checked_document(path, format.read(path, {meshes, true}).document);
 }
 
 Validation validate_files(const std::vector<std::string>& garment_paths,

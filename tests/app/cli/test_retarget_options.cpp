@@ -5,6 +5,7 @@
 
 #include "app/cli/commands.hpp"
 #include "cli_runner.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "retarget/retarget.hpp"
 
 namespace gr {
@@ -230,6 +231,30 @@ TEST_CASE("typed retarget options take an outfit's garments as arrays", "[cli][o
   keys["source_skeleton"] = {"s1.obj", "s2.obj", "s3.obj"};
   keys["target_skeleton"] = "t.obj";
   CHECK_THROWS_WITH(retarget_options_from_json(keys), Catch::Contains("--source-skeleton"));
+}
+
+}  // namespace gr
+
+namespace gr {
+
+TEST_CASE("the format option takes exactly the registered mesh formats",
+          "[cli][options][formats]") {
+  int exit_code = 0;
+  const std::unique_ptr<CLI::App> app = make_command_line(exit_code);
+  const std::string help = app->get_subcommand("retarget")->help();
+  std::string choices;
+  for (const std::string& name : mesh_format_names())
+    choices += (choices.empty() ? "{" : ",") + name;
+  CHECK(help.find("--format TEXT:" + choices + "}") != std::string::npos);
+  for (const MeshFormat* format : mesh_formats()) {
+    nlohmann::json keys = {{"garment", "g.obj"}, {"avatar", "a.obj"}, {"out", "out"}};
+    keys["format"] = format->name;
+    CHECK(retarget_options_from_json(keys).format == format);
+  }
+  nlohmann::json unknown = {{"garment", "g.obj"}, {"avatar", "a.obj"}, {"out", "out"}};
+  CHECK(retarget_options_from_json(unknown).format == nullptr);
+  unknown["format"] = "stl";
+  CHECK_THROWS_AS(retarget_options_from_json(unknown), CLI::ValidationError);
 }
 
 }  // namespace gr

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/errors.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/io/gltf_model.hpp"
 #include "core/skeleton/skin_matching.hpp"

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/io/formats/mesh_formats.hpp"
 #include "core/io/obj_document.hpp"
 #include "stage_chain.hpp"
 
@@ -22,7 +23,7 @@ TEST_CASE("write stage: the garment as its input document, in the avatar's frame
   // A GLB asked for, with no skeleton to skin it over: written unskinned, and warned.
   const auto warnings_before = chain.progress.warnings().size();
   WriteOptions glb;
-  glb.format = "glb";
+  glb.format = &mesh_format_named("glb");
   const Eigen::MatrixXd none;
   const WriteOutput as_glb =
       run_write({const_cast<Scene&>(chain.read().scene), chain.prepare().normalized,
