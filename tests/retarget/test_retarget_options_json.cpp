@@ -46,7 +46,8 @@ TEST_CASE("typed retarget options survive their JSON field by field", "[options]
   const RetargetOptions given = unusual_options();
   const nlohmann::json written = retarget_options_to_json(given);
   // Through text, as the batch's job process reads them.
-  const RetargetOptions read = retarget_options_from_typed_json(nlohmann::json::parse(written.dump()));
+  const RetargetOptions read =
+      retarget_options_from_typed_json(nlohmann::json::parse(written.dump()));
   CHECK(retarget_options_to_json(read) == written);
   CHECK(read.inputs.more_garments.size() == 1);
   CHECK(read.inputs.more_garments[0].source_body == "hb.obj");
@@ -58,9 +59,8 @@ TEST_CASE("typed retarget options survive their JSON field by field", "[options]
   CHECK(read.shape_thresholds.max_scale == std::numeric_limits<double>::infinity());
   CHECK(read.format == &mesh_format_named("glb"));
   CHECK_FALSE(read.open_pierced_faces);
-  CHECK(retarget_options_to_json(retarget_options_from_typed_json(
-            retarget_options_to_json(RetargetOptions{}))) ==
-        retarget_options_to_json(RetargetOptions{}));
+  CHECK(retarget_options_to_json(retarget_options_from_typed_json(retarget_options_to_json(
+            RetargetOptions{}))) == retarget_options_to_json(RetargetOptions{}));
   CHECK(retarget_options_from_typed_json(retarget_options_to_json(RetargetOptions{})).format ==
         nullptr);
 }

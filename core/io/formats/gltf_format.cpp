@@ -9,8 +9,7 @@ MeshFileContents read_gltf_file(const std::string& path, const MeshReadOptions& 
   return {std::move(asset.document), std::move(asset.gltf)};
 }
 
-std::vector<std::string> write_glb_file(const std::string& path,
-                                        const std::vector<GlbMesh>& meshes,
+std::vector<std::string> write_glb_file(const std::string& path, const std::vector<GlbMesh>& meshes,
                                         const MeshWriteOptions& /*options*/) {
   write_glb_meshes(path, meshes);
   return {};
@@ -19,8 +18,8 @@ std::vector<std::string> write_glb_file(const std::string& path,
 }  // namespace
 
 const MeshFormat& gltf_format() {
-  static const MeshFormat format{"glb", "GLB", {".glb", ".gltf"}, true, true, true, false,
-                                 &read_gltf_file, &write_glb_file};
+  static const MeshFormat format{"glb", "GLB", {".glb", ".gltf"}, true,           true,
+                                 true,  false, &read_gltf_file,   &write_glb_file};
   return format;
 }
 

@@ -30,8 +30,8 @@ std::vector<std::string> mesh_format_names() {
 const MeshFormat& mesh_format_named(const std::string& name) {
   for (const MeshFormat* format : mesh_formats())
     if (format->name == name) return *format;
-  throw std::invalid_argument(fmt::format("unknown mesh format '{}' ({})", name,
-                                          fmt::join(mesh_format_names(), ", ")));
+  throw std::invalid_argument(
+      fmt::format("unknown mesh format '{}' ({})", name, fmt::join(mesh_format_names(), ", ")));
 }
 
 const MeshFormat& mesh_format_for_path(const std::string& path) {
