@@ -49,7 +49,7 @@ std::vector<std::string> skirt_on_foxgirl(const std::filesystem::path& out,
 
 }  // namespace
 
-TEST_CASE("With its source body the skirt keeps its ease; the tight fit paints it on",
+TEST_CASE("With its source body the skirt keeps its ease - the tight fit paints it on",
           "[ease][cli][shared]") {
   const std::filesystem::path root = test::fresh_temp_dir("ease_skirt");
   const test::CliRun ease = test::run_cli(skirt_on_foxgirl(root / "ease", {}), "ease_skirt");
@@ -73,7 +73,7 @@ TEST_CASE("With its source body the skirt keeps its ease; the tight fit paints i
   CHECK(painted["within_25_percent"].get<double>() < 0.1);
 }
 
-TEST_CASE("Without a source body the fit is tight, with a warning; ease asks for one",
+TEST_CASE("Without a source body the fit is tight, with a warning - ease asks for one",
           "[ease][cli]") {
   const std::filesystem::path root = test::fresh_temp_dir("ease_bundled");
   const std::string scene = test::project_file("scenes/dress_form/");

@@ -38,7 +38,7 @@ std::size_t heat_pixels(const gr::RgbImage& image) {
 
 }  // namespace
 
-TEST_CASE("retarget writes report.html and, with --png, front and side stills; validate --html",
+TEST_CASE("retarget writes report.html and, with --png, front and side stills - validate --html",
           "[tools][cli][report_page]") {
   const fs::path out = gr::test::fresh_temp_dir("cli_report_page");
   const gr::test::CliRun run =

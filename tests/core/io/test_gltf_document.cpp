@@ -261,7 +261,7 @@ TEST_CASE("Bad glTF input gives one clear InputError", "[io][gltf]") {
   }
 }
 
-TEST_CASE("Node transforms are applied; primitives are merged and written back apart",
+TEST_CASE("Node transforms are applied - primitives are merged and written back apart",
           "[io][gltf]") {
   const auto dir = test::fresh_temp_dir("gltf_nodes");
   nlohmann::json json = valid_gltf_json(dir);

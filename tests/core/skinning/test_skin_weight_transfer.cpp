@@ -61,7 +61,7 @@ void require_valid_rows(const Eigen::MatrixXd& w, int max_influences) {
 // body's interpolated weights are the hats exactly.
 const TriangleMesh kBody = tube(0.0, 2.0, 21, 32, [](double) { return 0.3; });
 
-TEST_CASE("Garment vertices near the body take its weights; the flare is inpainted smoothly",
+TEST_CASE("Garment vertices near the body take its weights - the flare is inpainted smoothly",
           "[skinning][transfer]") {
   // Snug from y = 0.2 to 1.4, then flaring out to twice the body's radius.
   const TriangleMesh garment =
@@ -108,7 +108,7 @@ TEST_CASE("Garment vertices near the body take its weights; the flare is inpaint
   REQUIRE(largest_jump < 0.1);
 }
 
-TEST_CASE("Thresholds decide what is matched; a part with no match takes its closest points",
+TEST_CASE("Thresholds decide what is matched - a part with no match takes its closest points",
           "[skinning][transfer]") {
   const TriangleMesh snug = tube(0.2, 1.8, 17, 24, [](double) { return 0.32; });
   SECTION("loose thresholds match every vertex") {

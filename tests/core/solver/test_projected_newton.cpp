@@ -334,7 +334,7 @@ TEST_CASE("projected Newton: stops when the energy stagnates over its window", "
   }
 }
 
-TEST_CASE("linear solver: symbolic analysis reused within the analysed pattern; shift on failure",
+TEST_CASE("linear solver: symbolic analysis reused within the analysed pattern - shift on failure",
           "[solver][linear]") {
   QuadraticProblem problem(30);
   Eigen::SparseMatrix<double> A;

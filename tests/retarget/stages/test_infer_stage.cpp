@@ -5,7 +5,7 @@
 
 namespace gr {
 
-TEST_CASE("infer stage: without a source body the fit is tight, warned; ease needs the body",
+TEST_CASE("infer stage: without a source body the fit is tight, warned - ease needs the body",
           "[pipeline][stages]") {
   test::StageChain chain("infer");
   const InferOutput& out = chain.infer();

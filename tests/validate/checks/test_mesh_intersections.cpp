@@ -24,7 +24,7 @@ TEST_CASE("crossing triangles intersect", "[validate][intersection]") {
   CHECK(intersect(vertical, base()));
 }
 
-TEST_CASE("touching counts as intersecting; a gap of 1e-12 does not", "[validate][intersection]") {
+TEST_CASE("touching counts as intersecting - a gap of 1e-12 does not", "[validate][intersection]") {
   const double offset = GENERATE(0.0, 1e-12, -1e-12);
   CAPTURE(offset);
   SECTION("vertex on the other triangle's interior") {
