@@ -263,7 +263,7 @@ Solved solve_garment(const SolveInput& in, ShrinkOutput& shrink, RetargetReport&
 }  // namespace
 
 RetargetResult run_retarget(const RetargetOptions& options) {
-  const RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
+  RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
   check_input_files(options.inputs, options.limits.max_input_mb);
   ResultFolder folder(options.out_dir, input_files(options.inputs), options.write_in_place);
   std::optional<tbb::global_control> thread_limit;
