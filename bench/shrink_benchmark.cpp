@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
+#include "core/common/interrupter.hpp"
 #include "core/common/stopwatch.hpp"
 #include "retarget/scene/normalization.hpp"
 #include "retarget/scene/scene.hpp"
@@ -92,6 +93,19 @@ FaceSizes face_sizes(const gr::TriangleMesh& mesh) {
   return sizes;
 }
 
+/// When each stage of a build starts, in seconds into it: the build's time split by stage.
+class StageStarts final : public gr::Interrupter {
+ public:
+  explicit StageStarts(const gr::Stopwatch& stopwatch) : stopwatch_(stopwatch) {}
+  void start(const std::string& stage) override {
+    stages.emplace_back(stage, stopwatch_.seconds());
+  }
+  std::vector<std::pair<std::string, double>> stages;
+
+ private:
+  const gr::Stopwatch& stopwatch_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,17 +132,13 @@ int main(int argc, char** argv) {
   for (const SharedScene& s : scenes)
     for (double h : voxel_sizes)
       for (const bool full_depth : {true, false}) {
-        // Stage times from the first report of each stage (seconds into the build).
         gr::Stopwatch stopwatch;
-        std::vector<std::pair<std::string, double>> stages;
+        StageStarts starts(stopwatch);
+        std::vector<std::pair<std::string, double>>& stages = starts.stages;
         gr::SignedDistanceOptions options;
         options.exterior_band = exterior_band;
         options.full_depth = full_depth;
-        options.progress = [&](const std::string& stage, double) {
-          if (stages.empty() || stages.back().first != stage)
-            stages.emplace_back(stage, stopwatch.seconds());
-          return true;
-        };
+        options.interrupter = &starts;
         stopwatch.restart();
         // Process CPU time: a fair measure when other programs share the cores.
         const std::clock_t cpu_start = std::clock();

@@ -153,7 +153,7 @@ class RetargetRun {
   }
 
   const RetargetOptions& options_;
-  const RunControl control_;
+  RunControl control_;
   ResultFolder folder_;
   std::optional<tbb::global_control> thread_limit_;
   Progress progress_;

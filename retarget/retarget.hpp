@@ -83,7 +83,7 @@ struct RetargetResult {
 /// removed when it is certified (kCertified, kShapeChanged), else kept at
 /// out_dir.previous; a run that throws leaves out_dir as it was.
 /// @throw InputError for bad inputs or inputs beyond options.limits, OutputError when
-///        out_dir cannot be written or another run holds it, RunStopped at the deadline,
+///        out_dir cannot be written or another run holds it, Interrupted at the deadline,
 ///        the memory limit or a stop request.
 RetargetResult run_retarget(const RetargetOptions& options);
 

@@ -15,7 +15,7 @@ struct ScenePaths;
 struct ShapeThresholds;
 struct InferenceOptions;
 struct RunLimits;
-class RunStopped;
+class Interrupted;
 class ParameterOverrides;
 
 /// The options naming a scene's files: --garment, --avatar, --out (all required), and the
@@ -64,7 +64,7 @@ void add_parameter_options(CLI::App& command, ParameterOverrides& overrides);
 
 /// Prints a stopped run's error line; returns its exit code (to_exit_code(Outcome::kLimitReached)
 /// or to_exit_code(Outcome::kInterrupted)).
-int report_stopped_run(const RunStopped& stopped);
+int report_stopped_run(const Interrupted& stopped);
 
 /// Each subcommand registers itself on the root app; its callback stores the exit code.
 void add_retarget_command(CLI::App& root, int& exit_code);

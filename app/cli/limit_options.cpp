@@ -30,10 +30,10 @@ void add_limit_options(CLI::App& command, RunLimits& limits) {
       ->check(CLI::NonNegativeNumber);
 }
 
-int report_stopped_run(const RunStopped& stopped) {
+int report_stopped_run(const Interrupted& stopped) {
   std::fprintf(stderr, "garment-retarget: error: %s; nothing was written\n", stopped.what());
-  return stopped.reason() == StopReason::kInterrupted ? to_exit_code(Outcome::kInterrupted)
-                                                      : to_exit_code(Outcome::kLimitReached);
+  return stopped.reason() == InterruptReason::kCancelled ? to_exit_code(Outcome::kInterrupted)
+                                                         : to_exit_code(Outcome::kLimitReached);
 }
 
 }  // namespace gr

@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   } catch (const gr::InputError& e) {
     std::fprintf(stderr, "garment-retarget: error: %s\n", e.what());
     return gr::to_exit_code(gr::Outcome::kBadInput);
-  } catch (const gr::RunStopped& e) {
+  } catch (const gr::Interrupted& e) {
     return gr::report_stopped_run(e);
   } catch (const gr::OutputError& e) {
     std::fprintf(stderr, "garment-retarget: error: %s\n", e.what());

@@ -148,7 +148,7 @@ int retarget_and_print(const RetargetOptions& options) {
   RetargetResult result;
   try {
     result = run_retarget(options);
-  } catch (const RunStopped& stopped) {
+  } catch (const Interrupted& stopped) {
     return report_stopped_run(stopped);
   }
   std::printf("%s\n", result.message.c_str());

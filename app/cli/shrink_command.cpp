@@ -1,7 +1,6 @@
 #include <cstdio>
 #include <memory>
 #include <string>
-#include <utility>
 
 #include "app/cli/commands.hpp"
 #include "retarget/outcome.hpp"
@@ -11,18 +10,23 @@ namespace gr {
 
 namespace {
 
-/// Prints a stage's progress on stderr in steps of a tenth.
-ProgressCallback stderr_progress() {
-  auto last = std::make_shared<std::pair<std::string, int>>("", -1);
-  return [last](const std::string& stage, double fraction) {
+/// Prints each stage's progress on stderr in steps of a tenth.
+class StderrProgress final : public Interrupter {
+ public:
+  void start(const std::string& stage) override { stage_ = stage; }
+  void progress(double fraction) override {
     const int tenth = static_cast<int>(fraction * 10.0);
-    if (stage != last->first || tenth != last->second) {
-      std::fprintf(stderr, "shrink: %s %3d%%\n", stage.c_str(), tenth * 10);
-      *last = {stage, tenth};
-    }
-    return true;
-  };
-}
+    if (stage_ == printed_stage_ && tenth == printed_tenth_) return;
+    std::fprintf(stderr, "shrink: %s %3d%%\n", stage_.c_str(), tenth * 10);
+    printed_stage_ = stage_;
+    printed_tenth_ = tenth;
+  }
+
+ private:
+  std::string stage_;
+  std::string printed_stage_;
+  int printed_tenth_ = -1;
+};
 
 }  // namespace
 
@@ -50,12 +54,14 @@ void add_shrink_command(CLI::App& root, int& exit_code) {
                 "Copy material libraries and textures that symbolic links lead to outside the "
                 "OBJ's folder");
   cmd->callback([options, quiet, mode, &exit_code]() {
-    if (!*quiet) options->progress = stderr_progress();
     options->mode = parse_shrink_mode(*mode);
+    StderrProgress progress;
+    ShrinkRunOptions run = *options;
+    if (!*quiet) run.interrupter = &progress;
     ShrinkRunResult result;
     try {
-      result = run_shrink(*options);
-    } catch (const RunStopped& stopped) {
+      result = run_shrink(run);
+    } catch (const Interrupted& stopped) {
       exit_code = report_stopped_run(stopped);
       return;
     }

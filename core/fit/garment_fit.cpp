@@ -23,7 +23,7 @@ double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const Matrix
 }
 
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
-                      const RetargetParameters& parameters, const NewtonCallback& on_newton_step,
+                      const RetargetParameters& parameters, Interrupter& interrupter,
                       const GuidePath& guide) {
   RetargetParameters fit_parameters = parameters;
   fit_parameters.dhat = parameters.fit_support();
@@ -42,7 +42,7 @@ FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3
           std::min(options.max_iterations, parameters.guided_fit_max_iterations);
   }
   ProjectedNewton newton(options);
-  result.solve = newton.minimize(problem, x, on_newton_step);
+  result.solve = newton.minimize(problem, x, interrupter);
   result.garment = problem.layout().garment(x);
   result.fold_free_fraction = problem.contact().mean_fold_free_fraction();
   // minimum_distance finds the contact pairs at x first; the contact term's value needs them.

@@ -44,8 +44,10 @@ double median_edge_ratio(const TriangleMesh& rest, const Eigen::Ref<const Matrix
 ///        garment passes through before the solve (follow_guide); when it followed them to
 ///        the end, the solve stops after parameters.guided_fit_max_iterations steps (when
 ///        positive).
+/// @param interrupter sees every Newton step of the solve (ProjectedNewton::minimize).
+/// @throw Interrupted from `interrupter`.
 FitResult fit_garment(const GarmentScene& scene, const Eigen::Ref<const MatrixX3d>& inflated,
                       const RetargetParameters& parameters,
-                      const NewtonCallback& on_newton_step = {}, const GuidePath& guide = {});
+                      Interrupter& interrupter = null_interrupter(), const GuidePath& guide = {});
 
 }  // namespace gr

@@ -23,8 +23,8 @@ const char* to_string(InflationStatus status) {
 }
 
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
-                               const InflationCallback& on_round,
-                               const NewtonCallback& on_newton_step, const InflationGuide& guide) {
+                               const InflationCallback& on_round, Interrupter& interrupter,
+                               const InflationGuide& guide) {
   const Stopwatch stopwatch;
   GarmentProblem problem(scene, parameters, GarmentProblem::Stage::kInflation);
   const DofLayout& layout = problem.layout();
@@ -58,7 +58,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     ++result.rounds;
     problem.tether_to(x);
     const double t_before = layout.t(x);
-    const NewtonResult solve = newton.minimize(problem, x, on_newton_step);
+    const NewtonResult solve = newton.minimize(problem, x, interrupter);
     result.newton_iterations += solve.iterations;
     result.factorizations += solve.factorizations;
     if (solve.status == SolverStatus::kNonFiniteEnergy)
@@ -86,6 +86,7 @@ InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParamete
     round.lambda2 = al.lambda2;
     // A solve that ended at its goal has just checked this snap at x.
     round.snapped = solve.status == SolverStatus::kGoalReached || problem.is_valid_snapping(x);
+    interrupter.check();
     if (on_round) on_round(round);
     if (round.snapped) {
       result.t_before_snap = t;

@@ -69,11 +69,14 @@ struct InflationGuide {
 /// pinched garment. A round that resets does not count.
 /// With a guide, the rounds start where follow_guide led along its path, with its
 /// multipliers; a reset still goes back to the initial garment at t = 0.
+/// `interrupter` sees every Newton step of the rounds (ProjectedNewton::minimize) and is
+/// checked after each round, before `on_round`.
 /// @pre the initial garment and A0 are intersection free (the shrink step's invariant).
 /// @throw std::invalid_argument, InputError as GarmentProblem's constructor.
+/// @throw Interrupted from `interrupter`.
 InflationResult inflate_avatar(const GarmentScene& scene, const RetargetParameters& parameters,
                                const InflationCallback& on_round = {},
-                               const NewtonCallback& on_newton_step = {},
+                               Interrupter& interrupter = null_interrupter(),
                                const InflationGuide& guide = {});
 
 }  // namespace gr

@@ -111,7 +111,7 @@ void ProjectedNewton::update_damping(double ratio) {
 }
 
 NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
-                                       const NewtonCallback& progress) {
+                                       Interrupter& interrupter) {
   const Stopwatch stopwatch;
   const auto elapsed = [&stopwatch] { return stopwatch.seconds(); };
   NewtonResult result;
@@ -232,8 +232,9 @@ NewtonResult ProjectedNewton::minimize(Problem& problem, Eigen::VectorXd& x,
     if (static_cast<int>(recent_energies.size()) > options_.energy_window + 1)
       recent_energies.pop_front();
     problem.solution_changed(x);
-    if (progress)
-      progress({result.iterations, energy, alpha, result.gradient_norm, elapsed(), damping_, &x});
+    interrupter.check();
+    interrupter.step(
+        {result.iterations, energy, alpha, result.gradient_norm, elapsed(), damping_, &x});
   }
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 
-#include <functional>
 #include <limits>
 #include <string>
 
+#include "core/common/interrupter.hpp"
 #include "core/solver/linear_solver.hpp"
 #include "core/solver/problem.hpp"
 
@@ -87,19 +87,6 @@ struct NewtonOptions {
   int reuse_max_iterations = 12;
 };
 
-/// Reported after each accepted step.
-struct NewtonProgress {
-  int iteration;  ///< accepted steps so far
-  double energy;
-  double step;             ///< alpha of the accepted step (fraction of the Newton direction)
-  double gradient_norm;    ///< ||g||_2 at the point before the step
-  double elapsed_seconds;  ///< since the solve started
-  double damping;          ///< Levenberg–Marquardt mu for the next step
-  const Eigen::VectorXd* point = nullptr;  ///< the accepted point, valid during the call
-};
-
-using NewtonCallback = std::function<void(const NewtonProgress&)>;
-
 struct NewtonResult {
   SolverStatus status = SolverStatus::kNoDescent;
   int iterations = 0;               ///< accepted steps
@@ -133,7 +120,11 @@ class ProjectedNewton {
   const LinearSolver& linear_solver() const { return linear_solver_; }
 
   /// Minimizes from x; x is overwritten with the last accepted point whatever the status.
-  NewtonResult minimize(Problem& problem, Eigen::VectorXd& x, const NewtonCallback& progress = {});
+  /// After each accepted step asks `interrupter` whether to stop (check()), then reports
+  /// the step to it (Interrupter::step).
+  /// @throw Interrupted from `interrupter`; x then holds the last accepted point.
+  NewtonResult minimize(Problem& problem, Eigen::VectorXd& x,
+                        Interrupter& interrupter = null_interrupter());
 
  private:
   /// The damped direction -(H + mu D)⁻¹g within the trust radius, raising mu while the

@@ -210,7 +210,7 @@ gr::RetargetResult run_retarget(const gr::RetargetOptions& options) {
     const SignalsStopRuns signals;
     const nb::gil_scoped_release unlocked;
     result = gr::run_retarget(options);
-  } catch (const gr::RunStopped& stopped) {
+  } catch (const gr::Interrupted& stopped) {
     if (gr::report_stopped_run(stopped) == gr::to_exit_code(gr::Outcome::kInterrupted)) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
       throw nb::python_error();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,13 +14,30 @@ namespace gr {
 
 /// What a stage reports while it runs: progress lines on stderr ("[   1.234 s] stage:
 /// message", silent when quiet), the warnings it raises for the report, and the run's
-/// limits, which its long loops check.
-class Progress {
+/// limits. It is the interrupter the stages hand to their long work: it passes stages,
+/// progress and the stop on to the run's control, and logs the Newton steps of the solves
+/// it is given, the first ones then every tenth, under the stage last started.
+class Progress final : public Interrupter {
  public:
-  /// @param control the run's limits; null: none but a stop request (Ctrl-C). It must
-  ///        outlive the Progress.
-  explicit Progress(bool quiet, const RunControl* control = nullptr)
-      : quiet_(quiet), control_(control ? control : &unlimited()) {}
+  /// @param control the run's limits (a RunControl); null: none but a stop request
+  ///        (Ctrl-C). It must outlive the Progress.
+  explicit Progress(bool quiet, Interrupter* control = nullptr)
+      : quiet_(quiet), control_(control ? control : &unlimited_) {}
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void start(const std::string& stage) override {
+    stage_ = stage;
+    control_->start(stage);
+  }
+  void progress(double fraction) override { control_->progress(fraction); }
+  void step(const SolverStep& step) override {
+    control_->step(step);
+    if (step.iteration <= kNewtonLogFirst || step.iteration % kNewtonLogEvery == 0)
+      log(stage_.c_str(), "  Newton {:4d}  E {:.9g}  step {:.3g}  |g| {:.3g}  mu {:.2g}",
+          step.iteration, step.energy, step.step, step.gradient_norm, step.damping);
+  }
+  std::optional<Interrupted> interruption() const override { return control_->interruption(); }
 
   /// Seconds since construction.
   double elapsed_seconds() const { return stopwatch_.seconds(); }
@@ -42,17 +60,17 @@ class Progress {
   /// The warnings so far, in the order raised.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
-  const RunControl& control() const { return *control_; }
   bool quiet() const { return quiet_; }
 
  private:
-  static const RunControl& unlimited() {
-    static const RunControl control;
-    return control;
-  }
+  /// Newton lines: the first steps, then every tenth.
+  static constexpr int kNewtonLogFirst = 3;
+  static constexpr int kNewtonLogEvery = 10;
 
   bool quiet_;
-  const RunControl* control_;
+  RunControl unlimited_;
+  Interrupter* control_;
+  std::string stage_;
   std::vector<std::string> warnings_;
   Stopwatch stopwatch_;
 };

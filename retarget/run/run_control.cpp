@@ -47,23 +47,19 @@ double RunControl::seconds_left() const {
   return *timeout_seconds_ - clock_.seconds();
 }
 
-void RunControl::check(const std::string& stage) const {
-  if (std::optional<RunStopped> stop = poll(stage)) throw *stop;
-}
-
-std::optional<RunStopped> RunControl::poll(const std::string& stage) const {
+std::optional<Interrupted> RunControl::interruption() const {
   if (stop_requested.load(std::memory_order_relaxed))
-    return RunStopped(StopReason::kInterrupted, "interrupted during " + stage);
+    return Interrupted(InterruptReason::kCancelled, "interrupted during " + stage_);
   if (timeout_seconds_ && clock_.seconds() > *timeout_seconds_)
-    return RunStopped(StopReason::kTimeout,
-                      fmt::format("timed out after {:.1f} s (--timeout {:g}) during {}",
-                                  clock_.seconds(), *timeout_seconds_, stage));
+    return Interrupted(InterruptReason::kTimeout,
+                       fmt::format("timed out after {:.1f} s (--timeout {:g}) during {}",
+                                   clock_.seconds(), *timeout_seconds_, stage_));
   if (max_memory_mb_) {
     const double resident = resident_memory_mb();
     if (resident > *max_memory_mb_)
-      return RunStopped(StopReason::kMemoryLimit,
-                        fmt::format("{:.0f} MB resident exceeds --max-memory-mb {:g} during {}",
-                                    resident, *max_memory_mb_, stage));
+      return Interrupted(InterruptReason::kMemoryLimit,
+                         fmt::format("{:.0f} MB resident exceeds --max-memory-mb {:g} during {}",
+                                     resident, *max_memory_mb_, stage_));
   }
   return std::nullopt;
 }

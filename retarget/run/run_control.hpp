@@ -1,11 +1,10 @@
 #pragma once
 
 #include <optional>
-#include <stdexcept>
 #include <string>
 
+#include "core/common/interrupter.hpp"
 #include "core/common/stopwatch.hpp"
-#include "shrink/common/progress.hpp"
 
 namespace gr {
 
@@ -18,24 +17,6 @@ struct RunLimits {
   double timeout_seconds = 0.0;  ///< wall time of the whole run; 0: none
 };
 
-/// Why a run stopped before its end.
-enum class StopReason {
-  kTimeout,      ///< the run's deadline (--timeout) passed
-  kInterrupted,  ///< Ctrl-C, SIGTERM, or request_stop() from a caller
-  kMemoryLimit,  ///< the process grew beyond the run's memory limit (--max-memory-mb)
-};
-
-/// A run stopped by its limits or at a user's request: it leaves no result of its own.
-class RunStopped : public std::runtime_error {
- public:
-  RunStopped(StopReason reason, const std::string& message)
-      : std::runtime_error(message), reason_(reason) {}
-  StopReason reason() const { return reason_; }
-
- private:
-  StopReason reason_;
-};
-
 /// Asks every running RunControl of this process to stop at its next check. Only sets an
 /// atomic flag, so a signal handler may call it.
 void request_stop() noexcept;
@@ -46,21 +27,18 @@ void clear_stop_request() noexcept;
 /// same kind ends the process as it would have without the handler.
 void stop_on_signals();
 
-/// The limits of one run, checked by its long loops: a deadline, the process's memory, and
-/// the process-wide stop request.
-class RunControl {
+/// The limits of one run, as the interrupter its long loops check: a deadline, the
+/// process's memory, and the process-wide stop request. A stop is an Interrupted naming
+/// the stage last started: kCancelled for a stop request, kTimeout, kMemoryLimit.
+class RunControl final : public Interrupter {
  public:
   /// @param timeout_seconds wall time allowed from now; unset or non-positive: none.
   /// @param max_memory_mb resident memory allowed to the process; unset or non-positive: none.
   explicit RunControl(std::optional<double> timeout_seconds = {},
                       std::optional<double> max_memory_mb = {});
 
-  /// @throw RunStopped naming `stage` when the deadline passed, the memory limit is
-  ///        exceeded or a stop was requested.
-  void check(const std::string& stage) const;
-  /// What check() would throw, without throwing: for hooks that may not throw (a stage's
-  /// progress callback asks to cancel instead).
-  std::optional<RunStopped> poll(const std::string& stage) const;
+  void start(const std::string& stage) override { stage_ = stage; }
+  std::optional<Interrupted> interruption() const override;
 
   /// Seconds left before the deadline; infinity without one.
   double seconds_left() const;
@@ -69,25 +47,8 @@ class RunControl {
   std::optional<double> timeout_seconds_;
   std::optional<double> max_memory_mb_;
   Stopwatch clock_;
+  std::string stage_ = "the run";
 };
-
-/// Runs `work(hook)`, where `hook` is a ProgressCallback that asks the stage to cancel
-/// when `control` must stop; the stage's OperationCancelled comes back as the RunStopped
-/// that caused it.
-template <typename Work>
-decltype(auto) with_stop_hook(const RunControl& control, Work&& work) {
-  std::optional<RunStopped> stop;
-  const ProgressCallback hook = [&control, &stop](const std::string& stage, double) {
-    stop = control.poll(stage);
-    return !stop;
-  };
-  try {
-    return work(hook);
-  } catch (const OperationCancelled&) {
-    if (stop) throw RunStopped(*stop);
-    throw;
-  }
-}
 
 /// Peak resident memory a retarget is expected to take, in MB, from its face counts: a
 /// linear fit to measured runs (bench/results/memory_estimate.md), which the peaks

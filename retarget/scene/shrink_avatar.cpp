@@ -38,6 +38,23 @@ void check_options(const ShrinkRunOptions& options, const Scene& scene) {
   require_skeletons_for(options.mode, scene.source_skeleton.has_value(), options.inputs.avatar);
 }
 
+/// What `garment-retarget shrink` hands to its work: the caller's interrupter sees the
+/// stages and progress and may stop it first; then the run's limits, whose stop names the
+/// command's one stage ("during shrink").
+class ShrinkRunInterrupter final : public ForwardingInterrupter {
+ public:
+  ShrinkRunInterrupter(Interrupter& caller, const RunControl& control)
+      : ForwardingInterrupter(caller), control_(control) {}
+
+  std::optional<Interrupted> interruption() const override {
+    if (std::optional<Interrupted> stop = next().interruption()) return stop;
+    return control_.interruption();
+  }
+
+ private:
+  const RunControl& control_;
+};
+
 }  // namespace
 
 const char* to_string(ShrinkMode mode) {
@@ -55,22 +72,22 @@ ShrinkMode parse_shrink_mode(const std::string& name) {
 }
 
 SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_size,
-                                       const ProgressCallback& progress, double exterior_band) {
+                                       Interrupter& interrupter, double exterior_band) {
   SignedDistanceOptions options;
   options.exterior_band = std::max(kDistanceBand, exterior_band);
   options.full_depth = false;
-  options.progress = progress;
+  options.interrupter = &interrupter;
   return build_signed_distance(avatar, voxel_size, options);
 }
 
 ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
-                           const ProgressCallback& progress, std::optional<double> pullback) {
+                           Interrupter& interrupter, std::optional<double> pullback) {
   if (mode == ShrinkMode::kLevelset) {
     if (!grid)
       throw std::invalid_argument("the level-set shrink needs the avatar's signed distance");
     LevelsetShrinkOptions options;
-    options.progress = progress;
+    options.interrupter = &interrupter;
     try {
       return shrink_levelset(scene.avatar, scene.garment, *grid, options);
     } catch (const ShrinkBandTooShallowError&) {
@@ -78,7 +95,7 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
     }
     SignedDistanceOptions full;
     full.exterior_band = kDistanceBand;
-    full.progress = progress;
+    full.interrupter = &interrupter;
     ShrinkResult result =
         shrink_levelset(scene.avatar, scene.garment,
                         build_signed_distance(scene.avatar, grid->voxel_size(), full), options);
@@ -88,7 +105,7 @@ ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
   require_skeletons_for(mode, scene.source_skeleton.has_value(), "");
   SkeletonShrinkOptions options;
   if (pullback) options.pullback = *pullback;
-  options.progress = progress;
+  options.interrupter = &interrupter;
   return shrink_to_skeleton(scene.avatar, scene.garment, *scene.source_skeleton,
                             *scene.target_skeleton, skin_weights, options);
 }
@@ -121,17 +138,14 @@ nlohmann::json write_closest_shrink(const std::string& dir, const std::string& r
 
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const Stopwatch stopwatch;
-  const RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
+  RunControl control(options.limits.timeout_seconds, options.limits.max_memory_mb);
+  control.start("shrink");
   check_input_files(options.inputs, options.limits.max_input_mb);
   ResultFolder folder(options.out_dir, input_files(options.inputs));
   const Scene scene = load_scene(options.inputs);
   check_options(options, scene);
   require_within_limits(scene, options.limits);
-  // The caller's progress, then the run's limits.
-  const ProgressCallback progress = [&](const std::string& stage, double fraction) {
-    if (options.progress && !options.progress(stage, fraction)) return false;
-    return !control.poll(stage).has_value();
-  };
+  ShrinkRunInterrupter interrupter(or_null(options.interrupter), control);
   const NormalizedScene normalized = make_normalized_scene(scene);
   const Normalization& normalization = normalized.normalization;
   const TriangleMesh& avatar = normalized.avatar;
@@ -155,12 +169,12 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
              "positions in the garment file's frame"},
             {"garment_units_per_normalized_unit", 1.0 / normalization.garment_to_scene.scale}};
   try {
-    control.check("shrink");
+    control.check();
     if (options.mode == ShrinkMode::kLevelset) {
       const Stopwatch grid_stopwatch;
-      const SignedDistanceGrid grid = build_distance_grid(avatar, options.voxel_size, progress);
+      const SignedDistanceGrid grid = build_distance_grid(avatar, options.voxel_size, interrupter);
       run.grid_seconds = grid_stopwatch.seconds();
-      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, progress);
+      run.shrink = shrink_avatar(options.mode, normalized, scene.skin_weights, &grid, interrupter);
       report["voxel_size"] = options.voxel_size;
       report["grid_seconds"] = run.grid_seconds;
       report["grid_active_voxels"] = grid.active_voxel_count();
@@ -169,12 +183,12 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
     } else {
       InferenceReport inferred;
       InferenceOptions inference;
-      inference.binding_options.progress = progress;
+      inference.binding_options.interrupter = &interrupter;
       const Eigen::MatrixXd weights =
           skin_weights_for_shrink(scene, normalized, inference, inferred);
-      inferred.binding_options.progress = nullptr;
+      inferred.binding_options.interrupter = nullptr;
       report["inferred"] = to_json(inferred)["skin_weights"];
-      run.shrink = shrink_avatar(options.mode, normalized, weights, nullptr, progress);
+      run.shrink = shrink_avatar(options.mode, normalized, weights, nullptr, interrupter);
       report["pullback"] = run.shrink.pullback;
       report["collapsed_vertices"] = run.shrink.collapsed_vertices;
       report["collapse_rounds"] = run.shrink.collapse_rounds;
@@ -197,9 +211,6 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
         {"message", run.message}};
     write_report_and_commit();
     return run;
-  } catch (const OperationCancelled&) {
-    if (std::optional<RunStopped> stop = control.poll("shrink")) throw RunStopped(*stop);
-    throw;
   }
 
   // Back to the garment's frame: the shrunk avatar lies over the garment as given.

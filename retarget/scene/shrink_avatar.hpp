@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/common/interrupter.hpp"
 #include "retarget/run/run_control.hpp"
 #include "retarget/scene/scene.hpp"
-#include "shrink/common/progress.hpp"
 #include "shrink/shrunk_avatar/shrink_result.hpp"
 
 namespace gr {
@@ -31,9 +31,10 @@ constexpr double kDistanceBand = 0.1;
 
 /// The avatar's signed distance as the pipeline builds it: a narrow band of kDistanceBand
 /// inside the surface, and of `exterior_band` (at least kDistanceBand) outside, where the
-/// fit reads it.
+/// fit reads it. `interrupter` sees its stages (build_signed_distance).
+/// @throw Interrupted from `interrupter`.
 SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_size,
-                                       const ProgressCallback& progress = {},
+                                       Interrupter& interrupter = null_interrupter(),
                                        double exterior_band = kDistanceBand);
 
 /// Shrinks the normalized avatar until it is certified free of the garment.
@@ -43,11 +44,13 @@ SignedDistanceGrid build_distance_grid(const TriangleMesh& avatar, double voxel_
 /// @param skin_weights #joints × #avatar vertices, or empty (skeleton mode only).
 /// @param pullback skeleton mode: the first pullback tried (SkeletonShrinkOptions); unset:
 ///        its default.
+/// @param interrupter sees the shrink's stages (and a full-depth grid's) and may stop it.
 /// @throw InputError in skeleton mode without skeletons; std::invalid_argument in levelset
-///        mode without a grid; NoValidShrinkError when no shrink is found.
+///        mode without a grid; NoValidShrinkError when no shrink is found; Interrupted from
+///        `interrupter`.
 ShrinkResult shrink_avatar(ShrinkMode mode, const NormalizedScene& scene,
                            const Eigen::MatrixXd& skin_weights, const SignedDistanceGrid* grid,
-                           const ProgressCallback& progress = {},
+                           Interrupter& interrupter = null_interrupter(),
                            std::optional<double> pullback = {});
 
 /// After a failed shrink: writes the most shrunk avatar tried, `error.closest()`, as
@@ -66,9 +69,11 @@ struct ShrinkRunOptions {
   ScenePaths inputs;  ///< garment and avatar; skeletons and weights for "skeleton"
   std::string out_dir;
   ShrinkMode mode = ShrinkMode::kLevelset;
-  double voxel_size = 0.01;   ///< normalized scene units (the body is about 2 tall)
-  ProgressCallback progress;  ///< optional
-  RunLimits limits;           ///< input sizes, faces, memory and time the run may take
+  double voxel_size = 0.01;  ///< normalized scene units (the body is about 2 tall)
+  /// The caller's: told the stages and their progress, and asked whether to stop besides
+  /// the limits; null: none. It must outlive the run.
+  Interrupter* interrupter = nullptr;
+  RunLimits limits;  ///< input sizes, faces, memory and time the run may take
   /// Copy material files and textures that symbolic links lead to outside the OBJ's folder.
   bool allow_external_assets = false;
 };
@@ -92,7 +97,8 @@ struct ShrinkRunResult {
 /// (ResultFolder); a run that found no shrink keeps an earlier result at DIR.previous.
 /// @throw InputError for bad inputs (skeleton mode without skeletons, a non-positive voxel
 ///        size, inputs beyond options.limits), OutputError when out_dir cannot be written or
-///        another run holds it, RunStopped at the limits or a stop request.
+///        another run holds it, Interrupted at the limits, a stop request or from
+///        options.interrupter.
 ShrinkRunResult run_shrink(const ShrinkRunOptions& options);
 
 }  // namespace gr

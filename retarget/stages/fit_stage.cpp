@@ -39,13 +39,13 @@ FitOutput run_fit(const FitInput& input, const FitOptions& options, Progress& pr
                  out.ease_targets->median_scale, out.ease_targets->capped);
   }
   const StageTimer timer;
-  const NewtonCallback on_newton = newton_progress(progress, "fit");
+  progress.start("fit");
   const RetargetParameters& parameters = options.parameters;
-  out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton, options.guide);
+  out.fit = fit_garment(solver.scene, input.inflated, parameters, progress, options.guide);
   if (out.fit.guide.points > 0) progress.log("fit", "{}", describe_following(out.fit.guide));
   if (out.fit.solve.status != SolverStatus::kNonFiniteEnergy &&
       widen_scope_if_left(solver, out.fit.garment, parameters.dhat, "fit", progress))
-    out.fit = fit_garment(solver.scene, input.inflated, parameters, on_newton, options.guide);
+    out.fit = fit_garment(solver.scene, input.inflated, parameters, progress, options.guide);
   const FitResult& fit = out.fit;
   FitReport& report = out.report;
   report.newton_iterations = fit.solve.iterations;

@@ -38,7 +38,7 @@ struct FitOutput {
 /// source ease scaled as the garment is (ease), with the end-of-fit measurements in its
 /// report part. A fit stopped early is still intersection-free (every step was
 /// CCD-bounded) and warns.
-/// @throw RunStopped from progress.control().
+/// @throw Interrupted from progress (the run's limits).
 FitOutput run_fit(const FitInput& input, const FitOptions& options, Progress& progress);
 
 }  // namespace gr

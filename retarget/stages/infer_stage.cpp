@@ -65,20 +65,18 @@ InferOutput run_infer(const InferInput& input, const InferOptions& options, Prog
                               options.inference, out.inferred);
   out.source_ease = infer_ease(input, options, out.no_fit, source_body ? &*source_body : nullptr,
                                out.ease, progress);
-  progress.control().check("read");
+  progress.start("read");
+  progress.check();
   if (input.shrink_mode != ShrinkMode::kSkeleton) {
     out.skin_weights = input.scene.skin_weights;
     return out;
   }
   const StageTimer timer;
-  out.skin_weights = with_stop_hook(progress.control(), [&](const ProgressCallback& hook) {
-    InferenceOptions inference = options.inference;
-    inference.binding_options.progress = hook;
-    Eigen::MatrixXd weights =
-        skin_weights_for_shrink(input.scene, input.normalized, inference, out.inferred);
-    out.inferred.binding_options.progress = nullptr;
-    return weights;
-  });
+  InferenceOptions inference = options.inference;
+  inference.binding_options.interrupter = &progress;
+  out.skin_weights =
+      skin_weights_for_shrink(input.scene, input.normalized, inference, out.inferred);
+  out.inferred.binding_options.interrupter = nullptr;
   out.binding_seconds = timer.seconds();
   if (out.inferred.skin_weights_inferred)
     progress.log("shrink", "skin weights inferred: {} binding in {:.2f} s",

@@ -48,7 +48,7 @@ struct InferOutput {
 /// weights bound to the target skeleton.
 /// @throw InputError when the source body cannot be read, --fit ease has no source body,
 ///        or the root joint is not a joint of the skeletons; OutputError when the no-fit
-///        list cannot be written; RunStopped from progress.control() during the binding.
+///        list cannot be written; Interrupted from progress during the binding.
 InferOutput run_infer(const InferInput& input, const InferOptions& options, Progress& progress);
 
 }  // namespace gr

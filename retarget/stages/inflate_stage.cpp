@@ -12,7 +12,6 @@ InflateOutput run_inflate(const InflateInput& input, const InflateOptions& optio
   const MatrixX3d& avatar = solver.scene.avatar.vertices;
   if (options.write_frame) options.write_frame("round_00", solver.scene.garment.vertices, shrunk);
   const auto on_round = [&](const InflationRound& round) {
-    progress.control().check("inflate");
     progress.log(
         "inflate", "round {:2d}: t {:.9f}  eta {:.3g}  lambda1 {:.3g}  {} Newton steps{}{}",
         round.round, round.t, round.eta, round.lambda1, round.solve.iterations,
@@ -21,15 +20,15 @@ InflateOutput run_inflate(const InflateInput& input, const InflateOptions& optio
       options.write_frame(fmt::format("round_{:02d}", round.round), round.garment,
                           shrunk + round.t * (avatar - shrunk));
   };
-  const NewtonCallback on_newton = newton_progress(progress, "inflate");
+  progress.start("inflate");
   InflateOutput out;
   out.inflation =
-      inflate_avatar(solver.scene, options.parameters, on_round, on_newton, options.guide);
+      inflate_avatar(solver.scene, options.parameters, on_round, progress, options.guide);
   if (out.inflation.succeeded() &&
       widen_scope_if_left(solver, out.inflation.garment, options.parameters.dhat, "inflation",
                           progress))
     out.inflation =
-        inflate_avatar(solver.scene, options.parameters, on_round, on_newton, options.guide);
+        inflate_avatar(solver.scene, options.parameters, on_round, progress, options.guide);
   const InflationResult& inflation = out.inflation;
   if (inflation.guide.points > 0)
     progress.log("inflate", "{}", describe_following(inflation.guide));

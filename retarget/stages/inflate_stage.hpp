@@ -37,7 +37,7 @@ struct InflateOutput {
 
 /// Inflate: the avatar grows back from the shrunk avatar to the avatar under barrier
 /// contact (Algorithm 1), every step CCD-bounded.
-/// @throw RunStopped from progress.control().
+/// @throw Interrupted from progress (the run's limits).
 InflateOutput run_inflate(const InflateInput& input, const InflateOptions& options,
                           Progress& progress);
 

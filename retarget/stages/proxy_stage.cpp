@@ -45,6 +45,22 @@ std::vector<int> spaced_points(const std::vector<Eigen::VectorXd>& points,
   return kept;
 }
 
+/// Keeps each point a proxy's solve accepts (its path, for the garment to follow) and
+/// passes everything on to the run's progress.
+class PathRecorder final : public ForwardingInterrupter {
+ public:
+  PathRecorder(Interrupter& next, std::vector<Eigen::VectorXd>& points)
+      : ForwardingInterrupter(next), points_(points) {}
+
+  void step(const SolverStep& step) override {
+    next().step(step);
+    points_.push_back(*step.point);
+  }
+
+ private:
+  std::vector<Eigen::VectorXd>& points_;
+};
+
 }  // namespace
 
 InflationGuide ProxyPaths::inflation() const {
@@ -125,14 +141,10 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
 
   ProxyPaths paths(proxy, static_cast<int>(fine.garment.vertices.rows()));
   const RetargetParameters& parameters = options.parameters;
-  const NewtonCallback inflation_progress = newton_progress(progress, "proxy inflate");
-  const NewtonCallback record_inflation = [&](const NewtonProgress& step) {
-    inflation_progress(step);
-    paths.inflation_points.push_back(*step.point);
-  };
+  progress.start("proxy inflate");
+  PathRecorder inflation_path(progress, paths.inflation_points);
   // A reset sends the proxy back to its start: only the last attempt is a path.
   const InflationCallback on_round = [&](const InflationRound& round) {
-    progress.control().check("proxy inflate");
     if (round.reset) paths.inflation_points.clear();
   };
   // The proxy's barrier reaches as much further as the garment lies from it, so that the
@@ -141,7 +153,7 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
   RetargetParameters inflation_parameters = parameters;
   inflation_parameters.dhat += proxy->embedding.max_offset();
   const InflationResult inflation =
-      inflate_avatar(proxy->scene, inflation_parameters, on_round, record_inflation);
+      inflate_avatar(proxy->scene, inflation_parameters, on_round, inflation_path);
   report.inflate_newton_iterations = inflation.newton_iterations;
   if (!inflation.succeeded()) return not_used("the proxy's inflation failed: " + inflation.message);
   // The snap to t = 1 is the last point of the path.
@@ -165,12 +177,9 @@ ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Prog
   // with it stays clear of the avatar; the garment's own steps then close the gap. (The
   // fit's barrier keeps its width: a wider one would hold the proxy off the offsets.)
   for (double& offset : fit_scene.fit_offsets) offset += clearance;
-  const NewtonCallback fit_progress = newton_progress(progress, "proxy fit");
-  const NewtonCallback record_fit = [&](const NewtonProgress& step) {
-    fit_progress(step);
-    paths.fit_points.push_back(*step.point);
-  };
-  const FitResult fit = fit_garment(fit_scene, inflation.garment, parameters, record_fit);
+  progress.start("proxy fit");
+  PathRecorder fit_path(progress, paths.fit_points);
+  const FitResult fit = fit_garment(fit_scene, inflation.garment, parameters, fit_path);
   report.fit_newton_iterations = fit.solve.iterations;
   if (fit.solve.status == SolverStatus::kNonFiniteEnergy)
     return not_used("the proxy's fit failed: " + fit.solve.message);

@@ -68,7 +68,7 @@ struct ProxyOutput {
 /// proxy's solves fail; the garment is then solved directly, and the report says why. An
 /// outfit of ordinary layers is solved directly: a proxy pays where each layer is dense, and
 /// one of several layers together keeps too little of each one's folds and ease.
-/// @throw RunStopped from progress.control().
+/// @throw Interrupted from progress (the run's limits).
 ProxyOutput run_proxy(const ProxyInput& input, const ProxyOptions& options, Progress& progress);
 
 }  // namespace gr

@@ -24,11 +24,9 @@ constexpr double kMaxPiercedFraction = 0.25;
 /// One shrink of the garment without `pierced`.
 ShrinkResult shrink_once(const ShrinkInput& input, const ShrinkOptions& options,
                          const SignedDistanceGrid& grid, const std::vector<int>& pierced,
-                         double pullback, const Progress& progress) {
-  return with_stop_hook(progress.control(), [&](const ProgressCallback& hook) {
-    return shrink_avatar(options.mode, scene_without_faces(input.normalized, pierced),
-                         input.skin_weights, &grid, hook, pullback);
-  });
+                         double pullback, Progress& progress) {
+  return shrink_avatar(options.mode, scene_without_faces(input.normalized, pierced),
+                       input.skin_weights, &grid, progress, pullback);
 }
 
 /// The shrink with pierced faces growing while none is free of the garment.
@@ -134,10 +132,8 @@ ShrinkOutput run_shrink(const ShrinkInput& input, const ShrinkOptions& options,
   ShrinkOutput out;
   out.report.mode = options.mode;
   const StageTimer grid_timer;
-  out.grid = with_stop_hook(progress.control(), [&](const ProgressCallback& hook) {
-    return build_distance_grid(input.normalized.avatar, options.voxel_size, hook,
-                               options.distance_band);
-  });
+  out.grid = build_distance_grid(input.normalized.avatar, options.voxel_size, progress,
+                                 options.distance_band);
   progress.log("shrink", "signed distance: {} voxels of {:.4g} in {:.2f} s",
                out.grid.active_voxel_count(), options.voxel_size, grid_timer.seconds());
   try {

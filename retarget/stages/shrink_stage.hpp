@@ -54,7 +54,7 @@ struct ShrinkOutput {
 /// avatar meets), then, while no shrunk avatar is free of the rest, those the closest one
 /// meets next to them, each with a margin of edge rings; a few shrinks and a quarter of
 /// the faces at most. A garment the bones pierce nowhere is never opened.
-/// @throw RunStopped from progress.control().
+/// @throw Interrupted from progress (the run's limits).
 ShrinkOutput run_shrink(const ShrinkInput& input, const ShrinkOptions& options, Progress& progress);
 
 /// A second shrink of `shrink`'s scene with the same faces left out, thinner (`pullback`):

@@ -38,7 +38,7 @@ struct SolveOutput {
 /// SolvePolicy says when it stalls (a wider barrier; a thinner skeleton shrink, which
 /// replaces `shrink`), then the fit. Records its parts of `report` (proxy, inflate, fit,
 /// the barrier it ended with) as it goes.
-/// @throw RunStopped from progress.control().
+/// @throw Interrupted from progress (the run's limits).
 SolveOutput run_solve(const SolveInput& input, ShrinkOutput& shrink, RetargetReport& report,
                       Progress& progress);
 

@@ -10,13 +10,6 @@
 
 namespace gr {
 
-namespace {
-
-/// Newton progress lines: the first steps, then every tenth.
-constexpr int kNewtonLogEvery = 10;
-
-}  // namespace
-
 SolverScene make_solver_scene(const SolverSceneInput& input, const RetargetParameters& parameters) {
   const NormalizedScene& normalized = input.normalized;
   SolverScene solver;
@@ -87,15 +80,6 @@ std::string describe_following(const GuideFollowed& followed) {
       "cut by CCD{}",
       followed.points, followed.reached_end ? "to the end" : "and left them early",
       followed.points_reached, followed.held_motions, followed.cut_motions, recoveries);
-}
-
-NewtonCallback newton_progress(const Progress& progress, const char* stage_name) {
-  return [&progress, stage_name](const NewtonProgress& step) {
-    progress.control().check(stage_name);
-    if (step.iteration <= 3 || step.iteration % kNewtonLogEvery == 0)
-      progress.log(stage_name, "  Newton {:4d}  E {:.9g}  step {:.3g}  |g| {:.3g}  mu {:.2g}",
-                   step.iteration, step.energy, step.step, step.gradient_norm, step.damping);
-  };
 }
 
 }  // namespace gr

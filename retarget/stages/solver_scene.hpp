@@ -45,9 +45,4 @@ bool widen_scope_if_left(SolverScene& solver, const MatrixX3d& garment, double d
 /// One line on how far a garment followed a proxy's path (a progress line).
 std::string describe_following(const GuideFollowed& followed);
 
-/// Newton progress lines for the solve of `stage_name`, the first steps then every tenth;
-/// each step checks the run's limits.
-/// @throw RunStopped (from the solver's callback) when progress.control() must stop.
-NewtonCallback newton_progress(const Progress& progress, const char* stage_name);
-
 }  // namespace gr

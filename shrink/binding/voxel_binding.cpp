@@ -115,19 +115,24 @@ std::vector<BoneSegment> skeleton_segments(const Skeleton& skeleton,
 
 namespace {
 
+/// Passes on a grid build's stages as the one stage "binding grid".
+class BindingGridStage final : public ForwardingInterrupter {
+ public:
+  using ForwardingInterrupter::ForwardingInterrupter;
+  void start(const std::string&) override { next().start("binding grid"); }
+};
+
 /// The avatar's interior on a dense voxel box: voxel (i, j, k) of the box has its centre at
 /// voxel_size * (origin + (i, j, k)).
 class InteriorVoxels {
  public:
-  InteriorVoxels(const TriangleMesh& avatar, double voxel_size, const ProgressCallback& progress)
+  InteriorVoxels(const TriangleMesh& avatar, double voxel_size, Interrupter& interrupter)
       : voxel_size_(voxel_size) {
     SignedDistanceOptions grid_options;
     grid_options.exterior_band = kBandVoxels * voxel_size;
     grid_options.full_depth = false;
-    if (progress)
-      grid_options.progress = [&progress](const std::string&, double fraction) {
-        return progress("binding grid", fraction);
-      };
+    BindingGridStage grid_stage(interrupter);
+    grid_options.interrupter = &grid_stage;
     const SignedDistanceGrid grid = build_signed_distance(avatar, voxel_size, grid_options);
     const Eigen::RowVector3d lo = avatar.vertices.colwise().minCoeff() / voxel_size;
     const Eigen::RowVector3d hi = avatar.vertices.colwise().maxCoeff() / voxel_size;
@@ -465,8 +470,11 @@ const char* to_string(BindingMethod method) {
 Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
                       const BindingOptions& options) {
   check_inputs(avatar, skeleton, options);
+  const bool heat = options.method == BindingMethod::kHeat;
   const Stopwatch stopwatch;
-  report_progress(options.progress, "binding", 0.0);
+  Interrupter& interrupter = or_null(options.interrupter);
+  interrupter.start("binding");
+  interrupter.checkpoint(0.0);
   Binding binding;
   const std::vector<BoneSegment> segments = skeleton_segments(skeleton, options);
   binding.segments = static_cast<int>(segments.size());
@@ -475,13 +483,13 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
   if (!(largest_side > 0.0) || !std::isfinite(largest_side))
     throw std::invalid_argument("bind_skeleton: the avatar has no extent");
   binding.voxel_size = largest_side / options.resolution;
-  const InteriorVoxels voxels(avatar, binding.voxel_size, options.progress);
+  const InteriorVoxels voxels(avatar, binding.voxel_size, interrupter);
   binding.interior_voxels = voxels.count();
-  report_progress(options.progress, "binding", 0.3);
-  const bool heat = options.method == BindingMethod::kHeat;
+  interrupter.start("binding");
+  interrupter.checkpoint(0.3);
   Eigen::MatrixXd distances = vertex_segment_distances(
       avatar, segments, voxels, heat ? BindingMethod::kVisible : options.method);
-  report_progress(options.progress, "binding", 0.9);
+  interrupter.checkpoint(0.9);
   const Eigen::MatrixXd visible = heat ? distances : Eigen::MatrixXd();
   bind_unreached(avatar, segments, distances, binding);
   const auto joint_count = static_cast<int>(skeleton.joints.rows());
@@ -489,7 +497,7 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
     binding.weights = heat_weights(avatar, segments, visible, distances, joint_count,
                                    binding.voxel_size, options);
     binding.seconds = stopwatch.seconds();
-    report_progress(options.progress, "binding", 1.0);
+    interrupter.checkpoint(1.0);
     return binding;
   }
   binding.weights =
@@ -505,7 +513,7 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
         weights_from_distances(distances, segments, joint_count, binding.voxel_size, options);
   }
   binding.seconds = stopwatch.seconds();
-  report_progress(options.progress, "binding", 1.0);
+  interrupter.checkpoint(1.0);
   return binding;
 }
 

@@ -2,9 +2,9 @@
 
 #include <string>
 
+#include "core/common/interrupter.hpp"
 #include "core/common/types.hpp"
 #include "core/io/rig_files.hpp"
-#include "shrink/common/progress.hpp"
 
 namespace gr {
 
@@ -48,8 +48,9 @@ struct BindingOptions {
   double end_angle_degrees = 135.0;
   /// Length of an end segment, in lengths of the parent bone.
   double end_length = 1.0;
-  /// Reports stages "binding grid" and "binding".
-  ProgressCallback progress;
+  /// Told stages "binding grid" and "binding" and their progress, and asked between parts
+  /// whether to stop; null: none.
+  Interrupter* interrupter = nullptr;
 };
 
 /// A bone or an end segment of a skeleton (see BindingOptions::end_angle_degrees), in the
@@ -110,7 +111,7 @@ struct Binding {
 ///        or an option is out of its range (resolution < 8, falloff <= 0, ratio < 1,
 ///        influences < 1, end length < 0).
 /// @throw std::runtime_error when the heat system cannot be factored (kHeat).
-/// @throw OperationCancelled when options.progress returns false.
+/// @throw Interrupted from options.interrupter.
 Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
                       const BindingOptions& options = {});
 

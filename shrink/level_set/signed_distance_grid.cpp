@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -40,12 +41,15 @@ void initialize_openvdb() {
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
-/// Forwards progress to the callback from the thread that started the build only (TBB
-/// workers must not call user code) and remembers a cancellation for all threads.
-class ProgressForwarder final : public openvdb::util::NullInterrupter {
+/// OpenVDB's interrupter over ours: names the stage, passes progress on from the thread
+/// that started the build only (TBB workers must not call into it), and keeps the first
+/// stop it is told of for all threads, to throw once they are done.
+class StageInterrupter final : public openvdb::util::NullInterrupter {
  public:
-  ProgressForwarder(const ProgressCallback& progress, std::string stage)
-      : progress_(progress), stage_(std::move(stage)), owner_(std::this_thread::get_id()) {}
+  StageInterrupter(Interrupter& interrupter, const std::string& stage)
+      : interrupter_(interrupter), owner_(std::this_thread::get_id()) {
+    interrupter_.start(stage);
+  }
 
   bool wasInterrupted(int percent = -1) override {
     return report(percent >= 0 ? percent / 100.0 : -1.0);
@@ -53,26 +57,31 @@ class ProgressForwarder final : public openvdb::util::NullInterrupter {
 
   /// Reports `fraction` (ignored when negative) and returns whether to stop.
   bool report(double fraction) {
-    if (cancelled_.load(std::memory_order_relaxed)) return true;
-    if (!progress_ || fraction < 0.0 || std::this_thread::get_id() != owner_) return false;
-    if (!progress_(stage_, std::clamp(fraction, 0.0, 1.0))) cancelled_ = true;
-    return cancelled_;
+    if (stopped_.load(std::memory_order_acquire)) return true;
+    if (fraction < 0.0 || std::this_thread::get_id() != owner_) return false;
+    interrupter_.progress(std::clamp(fraction, 0.0, 1.0));
+    if (std::optional<Interrupted> stop = interrupter_.interruption()) {
+      stop_ = std::move(stop);
+      stopped_.store(true, std::memory_order_release);
+    }
+    return stopped_.load(std::memory_order_relaxed);
   }
 
-  void throw_if_cancelled() const {
-    if (cancelled_) throw OperationCancelled("signed distance cancelled during " + stage_);
+  /// @throw Interrupted when the build was told to stop.
+  void throw_if_stopped() const {
+    if (stopped_.load(std::memory_order_acquire)) throw *stop_;
   }
 
  private:
-  const ProgressCallback& progress_;
-  std::string stage_;
+  Interrupter& interrupter_;
   std::thread::id owner_;
-  std::atomic<bool> cancelled_{false};
+  std::optional<Interrupted> stop_;  ///< written by the owner before stopped_ is set
+  std::atomic<bool> stopped_{false};
 };
 
 /// Runs body(leaf) over every leaf in parallel, reporting the finished fraction.
 template <typename Body>
-void for_each_leaf(LeafManager& leaves, ProgressForwarder& forwarder, Body body) {
+void for_each_leaf(LeafManager& leaves, StageInterrupter& forwarder, Body body) {
   const std::size_t count = leaves.leafCount();
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16),
@@ -83,7 +92,7 @@ void for_each_leaf(LeafManager& leaves, ProgressForwarder& forwarder, Body body)
                       done += range.size();
                       forwarder.report(static_cast<double>(done) / static_cast<double>(count));
                     });
-  forwarder.throw_if_cancelled();
+  forwarder.throw_if_stopped();
 }
 
 openvdb::Vec3d world_of(const Coord& ijk, double voxel_size) {
@@ -91,7 +100,7 @@ openvdb::Vec3d world_of(const Coord& ijk, double voxel_size) {
 }
 
 FloatGrid::Ptr unsigned_band(const TriangleMesh& avatar, double voxel_size, float band_voxels,
-                             const ProgressCallback& progress) {
+                             Interrupter& interrupter) {
   std::vector<openvdb::Vec3s> points(static_cast<std::size_t>(avatar.vertices.rows()));
   for (Eigen::Index v = 0; v < avatar.vertices.rows(); ++v)
     points[static_cast<std::size_t>(v)] =
@@ -106,12 +115,12 @@ FloatGrid::Ptr unsigned_band(const TriangleMesh& avatar, double voxel_size, floa
   const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(
       points, triangles);
   const auto transform = openvdb::math::Transform::createLinearTransform(voxel_size);
-  ProgressForwarder forwarder(progress, "unsigned distance");
+  StageInterrupter forwarder(interrupter, "unsigned distance");
   forwarder.report(0.0);
   FloatGrid::Ptr grid =
       openvdb::tools::meshToVolume<FloatGrid>(forwarder, adapter, *transform, band_voxels,
                                               band_voxels, openvdb::tools::UNSIGNED_DISTANCE_FIELD);
-  forwarder.throw_if_cancelled();
+  forwarder.throw_if_stopped();
   return grid;
 }
 
@@ -245,11 +254,10 @@ class LeafWinding {
 /// become `deep_inside`: kInteriorPending (activated) for a full-depth grid, else
 /// -background (inactive).
 void sign_leaves(FloatTree& tree, const TriangleMesh& avatar, const TriangleTree& surface,
-                 double voxel_size, float background, float deep_inside,
-                 const ProgressCallback& progress) {
+                 double voxel_size, float background, float deep_inside, Interrupter& interrupter) {
   const std::vector<Coord> rim_blocks = blocks_near_rims(avatar, voxel_size);
   LeafManager leaves(tree);
-  ProgressForwarder forwarder(progress, "sign");
+  StageInterrupter forwarder(interrupter, "sign");
   for_each_leaf(leaves, forwarder, [&](FloatTree::LeafNodeType& leaf) {
     LeafWinding winding(surface, rim_blocks, leaf.origin(), voxel_size);
     for (openvdb::Index i = 0; i < FloatTree::LeafNodeType::SIZE; ++i) {
@@ -304,9 +312,9 @@ void fill_interior_tiles(FloatTree& tree, const TriangleTree& surface, double vo
 }
 
 void fill_interior_distances(FloatTree& tree, const TriangleTree& surface, double voxel_size,
-                             const ProgressCallback& progress) {
+                             Interrupter& interrupter) {
   LeafManager leaves(tree);
-  ProgressForwarder forwarder(progress, "interior");
+  StageInterrupter forwarder(interrupter, "interior");
   for_each_leaf(leaves, forwarder, [&](FloatTree::LeafNodeType& leaf) {
     for (auto v = leaf.beginValueOn(); v; ++v) {
       if (*v != kInteriorPending) continue;
@@ -361,14 +369,15 @@ SignedDistanceGrid build_signed_distance(const TriangleMesh& avatar, double voxe
 
   const auto band_voxels =
       static_cast<float>(std::max(kMinBandVoxels, std::ceil(options.exterior_band / voxel_size)));
-  FloatGrid::Ptr grid = unsigned_band(avatar, voxel_size, band_voxels, options.progress);
+  Interrupter& interrupter = or_null(options.interrupter);
+  FloatGrid::Ptr grid = unsigned_band(avatar, voxel_size, band_voxels, interrupter);
   FloatTree& tree = grid->tree();
   const float background = tree.background();
 
   const float deep_inside = options.full_depth ? kInteriorPending : -background;
-  sign_leaves(tree, avatar, surface, voxel_size, background, deep_inside, options.progress);
+  sign_leaves(tree, avatar, surface, voxel_size, background, deep_inside, interrupter);
   fill_interior_tiles(tree, surface, voxel_size, deep_inside);
-  if (options.full_depth) fill_interior_distances(tree, surface, voxel_size, options.progress);
+  if (options.full_depth) fill_interior_distances(tree, surface, voxel_size, interrupter);
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
 
   auto impl = std::make_shared<SignedDistanceGrid::Impl>();

@@ -5,8 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/common/interrupter.hpp"
 #include "core/common/types.hpp"
-#include "shrink/common/progress.hpp"
 
 namespace gr {
 
@@ -16,7 +16,9 @@ struct SignedDistanceOptions {
   /// least 3 voxels are used). Beyond it the grid holds this value; the sampler adds the
   /// distance to the grid's box far away. The fit term pulls garment points only within it.
   double exterior_band = 0.1;
-  ProgressCallback progress;
+  /// Told the stages and their progress, and asked between parts of the build whether to
+  /// stop; null: none.
+  Interrupter* interrupter = nullptr;
   /// Store the distance at every voxel inside (the level-set shrink walks to the medial
   /// region). When false the grid keeps only the band (exterior_band on both sides of the
   /// surface, at least 3 voxels) and holds -background deeper inside, which is all the fit
@@ -71,7 +73,7 @@ class SignedDistanceGrid {
 /// last with full depth only).
 /// @throw std::invalid_argument when voxel_size is not positive and finite, or the avatar
 ///        has no face or an index out of range.
-/// @throw OperationCancelled when options.progress returns false.
+/// @throw Interrupted from options.interrupter.
 SignedDistanceGrid build_signed_distance(const TriangleMesh& avatar, double voxel_size,
                                          const SignedDistanceOptions& options = {});
 

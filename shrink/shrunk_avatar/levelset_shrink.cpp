@@ -83,7 +83,9 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
   if (!(options.depth_tolerance > 0.0) || !(options.step_voxels > 0.0))
     throw std::invalid_argument("shrink_levelset: depth tolerance and step must be positive");
   const Stopwatch stopwatch;
-  report_progress(options.progress, "shrink", 0.0);
+  Interrupter& interrupter = or_null(options.interrupter);
+  interrupter.start("shrink");
+  interrupter.checkpoint(0.0);
 
   const GridDistanceField field(grid);
   const double step = options.step_voxels * grid.voxel_size();
@@ -127,7 +129,7 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
   };
   auto finish = [&]() {
     result.seconds = stopwatch.seconds();
-    report_progress(options.progress, "shrink", 1.0);
+    interrupter.checkpoint(1.0);
     return result;
   };
 
@@ -159,8 +161,7 @@ ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& gar
       feasible = middle;
       accept(middle);
     }
-    report_progress(options.progress, "shrink",
-                    std::min(1.0, std::log2(deepest / (feasible - infeasible)) / total));
+    interrupter.checkpoint(std::min(1.0, std::log2(deepest / (feasible - infeasible)) / total));
   }
   return finish();
 }

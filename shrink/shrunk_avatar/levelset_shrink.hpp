@@ -1,7 +1,7 @@
 #pragma once
 
+#include "core/common/interrupter.hpp"
 #include "core/common/types.hpp"
-#include "shrink/common/progress.hpp"
 #include "shrink/level_set/signed_distance_grid.hpp"
 #include "shrink/shrunk_avatar/shrink_result.hpp"
 
@@ -14,8 +14,9 @@ struct LevelsetShrinkOptions {
   double depth_tolerance = 1e-3;
   /// Step of the inward walk along the field, in voxels.
   double step_voxels = 0.5;
-  /// Reports stage "shrink": the fraction of the bisection done.
-  ProgressCallback progress;
+  /// Told stage "shrink" and the fraction of the bisection done, and asked at each step
+  /// whether to stop; null: none.
+  Interrupter* interrupter = nullptr;
 };
 
 /// The level-set shrunk avatar: every vertex walks inward down the avatar's signed distance
@@ -32,7 +33,7 @@ struct LevelsetShrinkOptions {
 /// @throw NoValidShrinkError when even the deepest shrink (every vertex in the medial
 ///        region) conflicts with the garment; it names the conflict.
 /// @throw std::invalid_argument on a non-positive tolerance or step.
-/// @throw OperationCancelled when options.progress returns false.
+/// @throw Interrupted from options.interrupter.
 ShrinkResult shrink_levelset(const TriangleMesh& avatar, const TriangleMesh& garment,
                              const SignedDistanceGrid& grid,
                              const LevelsetShrinkOptions& options = {});

@@ -243,7 +243,9 @@ ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& 
                                 const SkeletonShrinkOptions& options) {
   check_inputs(avatar, source_skeleton, target_skeleton, skin_weights, options);
   const Stopwatch stopwatch;
-  report_progress(options.progress, "shrink", 0.0);
+  Interrupter& interrupter = or_null(options.interrupter);
+  interrupter.start("shrink");
+  interrupter.checkpoint(0.0);
 
   const BonePlacement placement =
       place_on_bones(avatar, source_skeleton, target_skeleton, skin_weights);
@@ -262,16 +264,15 @@ ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& 
     for (int round = 0;; ++round) {
       ++result.certifications;
       conflict = find_shrink_conflict(shrunk, garment);
-      report_progress(
-          options.progress, "shrink",
-          static_cast<double>(attempt * checks_per_pullback + round + 1) / total_checks);
+      interrupter.checkpoint(static_cast<double>(attempt * checks_per_pullback + round + 1) /
+                             total_checks);
       if (!conflict) {
         result.vertices = shrunk.vertices;
         result.pullback = pullback;
         result.collapsed_vertices = collapse.collapsed_count();
         result.collapse_rounds = round;
         result.seconds = stopwatch.seconds();
-        report_progress(options.progress, "shrink", 1.0);
+        interrupter.checkpoint(1.0);
         return result;
       }
       if (conflict->kind != ShrinkConflict::Kind::kSurfacesCross ||

@@ -1,8 +1,8 @@
 #pragma once
 
+#include "core/common/interrupter.hpp"
 #include "core/common/types.hpp"
 #include "core/io/rig_files.hpp"
-#include "shrink/common/progress.hpp"
 #include "shrink/shrunk_avatar/shrink_result.hpp"
 
 namespace gr {
@@ -20,8 +20,9 @@ struct SkeletonShrinkOptions {
   /// When the shrunk avatar still conflicts with the garment, the pullback is halved at
   /// most this many times before giving up (from 0.25, down to about 1e-3).
   int max_halvings = 8;
-  /// Reports stage "shrink": one step per certification.
-  ProgressCallback progress;
+  /// Told stage "shrink" and one progress step per certification, and asked there whether
+  /// to stop; null: none.
+  Interrupter* interrupter = nullptr;
   /// Rounds of pulling the vertices of crossing faces toward their anchors (below), each
   /// followed by a certification, before the pullback is halved.
   int max_collapse_rounds = 24;
@@ -57,7 +58,7 @@ struct SkeletonShrinkOptions {
 ///        weights have the wrong shape; a pullback outside (0, 1], a collapse step outside
 ///        (0, 1), a negative round or halving count.
 /// @throw NoValidShrinkError when every pullback tried conflicts with the garment.
-/// @throw OperationCancelled when options.progress returns false.
+/// @throw Interrupted from options.interrupter.
 ShrinkResult shrink_to_skeleton(const TriangleMesh& avatar, const TriangleMesh& garment,
                                 const Skeleton& source_skeleton, const Skeleton& target_skeleton,
                                 const Eigen::MatrixXd& skin_weights,

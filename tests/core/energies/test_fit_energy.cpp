@@ -92,7 +92,8 @@ TEST_CASE("fit energy with ease offsets holds a face at its distance from both s
   CHECK_THROWS_AS(FitEnergy(face, {}, field, 3, DofLayout{3}, {0.1}), std::invalid_argument);
 }
 
-TEST_CASE("fit energy: zero inside the avatar - the exact value on a flat face", "[energies][fit]") {
+TEST_CASE("fit energy: zero inside the avatar - the exact value on a flat face",
+          "[energies][fit]") {
   TriangleMesh face;
   face.vertices.resize(3, 3);
   face.vertices << 0, 0, 0.5, 1, 0, 0.5, 0, 1, 0.5;

@@ -14,6 +14,13 @@ using namespace gr;
 
 namespace {
 
+/// Keeps every step the solver reports.
+class RecordedSteps : public Interrupter {
+ public:
+  void step(const SolverStep& step) override { steps.push_back(step); }
+  std::vector<SolverStep> steps;
+};
+
 /// 1/2 xᵀ A x - bᵀ x with A a sparse SPD tridiagonal matrix.
 class QuadraticProblem : public Problem {
  public:
@@ -100,17 +107,15 @@ TEST_CASE("projected Newton: Rosenbrock pairs with PSD projection", "[solver][ne
   Eigen::VectorXd x(40);
   for (int i = 0; i < 20; ++i) x.segment<2>(2 * i) << -1.2 + 0.05 * i, 1.0 - 0.1 * i;
   ProjectedNewton newton;
-  int callbacks = 0;
-  double last_energy = std::numeric_limits<double>::infinity();
-  bool monotone = true;
-  const NewtonResult result = newton.minimize(problem, x, [&](const NewtonProgress& p) {
-    ++callbacks;
-    monotone = monotone && p.energy <= last_energy;
-    last_energy = p.energy;
-  });
+  RecordedSteps recorded;
+  const NewtonResult result = newton.minimize(problem, x, recorded);
   CHECK(result.status == SolverStatus::kConverged);
-  CHECK(callbacks == result.iterations);
-  CHECK(monotone);
+  CHECK(static_cast<int>(recorded.steps.size()) == result.iterations);
+  double last_energy = std::numeric_limits<double>::infinity();
+  for (const SolverStep& step : recorded.steps) {
+    CHECK(step.energy <= last_energy);
+    last_energy = step.energy;
+  }
   CHECK((x - Eigen::VectorXd::Ones(40)).lpNorm<Eigen::Infinity>() < 1e-5);
   CHECK(result.iterations < 100);
 }
@@ -286,12 +291,10 @@ TEST_CASE("projected Newton: steps stay within the problem's safe bound", "[solv
   Eigen::VectorXd x = Eigen::VectorXd::Zero(4);
   const Eigen::VectorXd solution = problem.solution();
   ProjectedNewton newton;
-  int steps = 0;
-  newton.minimize(problem, x, [&](const NewtonProgress& p) {
-    ++steps;
-    CHECK(p.step <= 0.25);
-  });
-  CHECK(steps > 1);
+  RecordedSteps recorded;
+  newton.minimize(problem, x, recorded);
+  CHECK(recorded.steps.size() > 1);
+  for (const SolverStep& step : recorded.steps) CHECK(step.step <= 0.25);
   CHECK((x - solution).lpNorm<Eigen::Infinity>() < 1e-5);
 }
 
@@ -310,8 +313,9 @@ TEST_CASE("projected Newton: stops when the energy stagnates over its window", "
     Eigen::VectorXd x = Eigen::VectorXd::Zero(4);
     options.energy_tolerance = 1e-3;
     std::vector<double> energies{problem.value(x)};
-    const NewtonResult result = ProjectedNewton(options).minimize(
-        problem, x, [&](const NewtonProgress& p) { energies.push_back(p.energy); });
+    RecordedSteps recorded;
+    const NewtonResult result = ProjectedNewton(options).minimize(problem, x, recorded);
+    for (const SolverStep& step : recorded.steps) energies.push_back(step.energy);
     CHECK(result.status == SolverStatus::kConverged);
     CHECK(result.message.find("energy fell") != std::string::npos);
     REQUIRE(result.iterations >= options.energy_window);
@@ -493,8 +497,9 @@ TEST_CASE("projected Newton: a singular system is damped, never left to rounding
     newton.options().max_iterations = 20;
     const double start = problem.value(x);
     std::vector<double> energies;
-    const NewtonResult result = newton.minimize(
-        problem, x, [&](const NewtonProgress& step) { energies.push_back(step.energy); });
+    RecordedSteps recorded;
+    const NewtonResult result = newton.minimize(problem, x, recorded);
+    for (const SolverStep& step : recorded.steps) energies.push_back(step.energy);
     CHECK(result.status == SolverStatus::kIterationLimit);  // unbounded below: it never ends
     CHECK(result.gradient_descent_steps == 0);
     REQUIRE(energies.size() == 20);
@@ -531,8 +536,9 @@ TEST_CASE(
     newton.options().gradient_tolerance = 1e-9;
     newton.options().step_tolerance = 0.0;
     std::vector<double> damping{newton.options().initial_damping};
-    const NewtonResult result = newton.minimize(
-        problem, x, [&](const NewtonProgress& step) { damping.push_back(step.damping); });
+    RecordedSteps recorded;
+    const NewtonResult result = newton.minimize(problem, x, recorded);
+    for (const SolverStep& step : recorded.steps) damping.push_back(step.damping);
     CAPTURE(result.message);
     CHECK(result.converged());
     int rises = 0;
