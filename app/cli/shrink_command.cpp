@@ -24,47 +24,74 @@ ProgressCallback stderr_progress() {
   };
 }
 
-}  // namespace
+/// The shrink command's options as its CLI11 options set them: the mode stays text and
+/// quiet a flag until typed() makes them a mode and a progress callback.
+struct ShrinkBinding {
+  ShrinkRunOptions options;
+  bool quiet = false;
+  std::string mode = to_string(ShrinkMode::kLevelset);
 
-void add_shrink_command(CLI::App& root, int& exit_code) {
-  auto options = std::make_shared<ShrinkRunOptions>();
-  auto quiet = std::make_shared<bool>(false);
-  auto mode = std::make_shared<std::string>(to_string(options->mode));
+  ShrinkRunOptions typed() const {
+    ShrinkRunOptions typed_options = options;
+    typed_options.mode = parse_shrink_mode(mode);
+    if (!quiet) typed_options.progress = stderr_progress();
+    return typed_options;
+  }
+};
+
+/// Registers the shrink subcommand on `root` with every option bound to `binding`: the one
+/// declaration of shrink's options, which the command line and the typed front end
+/// (shrink_options_from_json) both use.
+CLI::App* add_shrink_options(CLI::App& root, ShrinkBinding& binding) {
+  ShrinkRunOptions& options = binding.options;
   CLI::App* cmd = root.add_subcommand(
       "shrink",
       "Shrink the avatar until it is certified free of the garment; write it over "
       "the garment (DIR/shrunk_avatar.obj) with DIR/report.json.");
-  add_scene_options(*cmd, options->inputs, options->out_dir);
-  cmd->add_option("--mode", *mode,
+  add_scene_options(*cmd, options.inputs, options.out_dir);
+  cmd->add_option("--mode", binding.mode,
                   "levelset: erode along the signed distance; "
                   "skeleton: collapse onto the source skeleton")
       ->check(CLI::IsMember({"levelset", "skeleton"}))
       ->capture_default_str();
-  cmd->add_option("--voxel-size", options->voxel_size,
+  cmd->add_option("--voxel-size", options.voxel_size,
                   "Level-set voxel size in normalized units (the body is about 2 tall)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_flag("--quiet", *quiet, "No progress on stderr");
-  add_limit_options(*cmd, options->limits);
-  cmd->add_flag("--allow-external-assets", options->allow_external_assets,
+  cmd->add_flag("--quiet", binding.quiet, "No progress on stderr");
+  add_limit_options(*cmd, options.limits);
+  cmd->add_flag("--allow-external-assets", options.allow_external_assets,
                 "Copy material libraries and textures that symbolic links lead to outside the "
                 "OBJ's folder");
-  cmd->callback([options, quiet, mode, &exit_code]() {
-    if (!*quiet) options->progress = stderr_progress();
-    options->mode = parse_shrink_mode(*mode);
+  return cmd;
+}
+
+}  // namespace
+
+void add_shrink_command(CLI::App& root, int& exit_code) {
+  auto binding = std::make_shared<ShrinkBinding>();
+  CLI::App* cmd = add_shrink_options(root, *binding);
+  cmd->callback([binding, &exit_code]() {
     ShrinkRunResult result;
     try {
-      result = run_shrink(*options);
+      result = run_shrink(binding->typed());
     } catch (const RunStopped& stopped) {
       exit_code = report_stopped_run(stopped);
       return;
     }
     std::printf("%s\n", result.message.c_str());
-    if (result.found) std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());
+    if (result.status == Outcome::kCertified)
+      std::printf("shrunk avatar: %s\n", result.avatar_path.c_str());
     std::printf("report: %s\n", result.report_path.c_str());
-    exit_code =
-        result.found ? to_exit_code(Outcome::kCertified) : to_exit_code(Outcome::kNoValidShrink);
+    exit_code = to_exit_code(result.status);
   });
+}
+
+ShrinkRunOptions shrink_options_from_json(const nlohmann::json& object) {
+  CLI::App root;
+  ShrinkBinding binding;
+  set_options_from_json(*add_shrink_options(root, binding), object);
+  return binding.typed();
 }
 
 }  // namespace gr

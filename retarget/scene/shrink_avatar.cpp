@@ -142,10 +142,11 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   nlohmann::json report;
   auto write_report_and_commit = [&]() {
     report["seconds"] = stopwatch.seconds();
-    if (!run.found && folder.has_previous()) report["previous_result"] = folder.previous_path();
+    if (run.status != Outcome::kCertified && folder.has_previous())
+      report["previous_result"] = folder.previous_path();
     write_file_atomically((out / "report.json").string(),
                           [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
-    folder.commit(!run.found);
+    folder.commit(run.status != Outcome::kCertified);
   };
   report = {{"mode", to_string(options.mode)},
             {"avatar", options.inputs.avatar},
@@ -214,7 +215,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   if (!warnings.empty()) report["warnings"] = warnings;
   write_obj((out / "shrunk_avatar.obj").string(), scene.avatar_document, positions);
 
-  run.found = true;
+  run.status = Outcome::kCertified;
   report["found"] = true;
   report["depth"] = run.shrink.depth;
   report["depth_garment_units"] = run.shrink.depth / garment_frame.scale;

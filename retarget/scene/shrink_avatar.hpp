@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "retarget/outcome.hpp"
 #include "retarget/run/run_control.hpp"
 #include "retarget/scene/scene.hpp"
 #include "shrink/common/progress.hpp"
@@ -74,8 +75,9 @@ struct ShrinkRunOptions {
 };
 
 struct ShrinkRunResult {
-  bool found = false;       ///< a certified shrunk avatar was written
-  std::string avatar_path;  ///< DIR/shrunk_avatar.obj when found
+  /// kCertified: a certified shrunk avatar was written; else kNoValidShrink.
+  Outcome status = Outcome::kNoValidShrink;
+  std::string avatar_path;  ///< DIR/shrunk_avatar.obj when certified
   std::string report_path;  ///< DIR/report.json, written either way
   std::string message;      ///< one line for the user
   ShrinkResult shrink;
