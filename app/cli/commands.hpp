@@ -11,6 +11,8 @@ namespace gr {
 
 struct BatchJob;
 struct RetargetOptions;
+struct ShrinkRunOptions;
+struct ValidateOptions;
 struct ScenePaths;
 struct ShapeThresholds;
 struct InferenceOptions;
@@ -75,12 +77,28 @@ void add_batch_command(CLI::App& root, int& exit_code);
 /// (retarget_options_to_json), read field by field with no second parse; not listed in --help.
 void add_run_job_command(CLI::App& root, int& exit_code);
 
-/// Retarget's options from typed values, by their long names ('_' or '-' between words):
-/// a flag is a boolean (false leaves it out), a repeatable option takes an array, any
-/// other a number or a text. Each value goes through its command-line option's own
-/// conversion and checks; garment, avatar and out are required.
-/// @throw CLI::ParseError (a UsageError in Python) naming the option.
+/// Sets `command`'s options from typed values, by their long names ('_' or '-' between
+/// words): a flag is a boolean (false leaves it out), a repeatable option takes an array,
+/// any other a number or a text. Each value goes through its command-line option's own
+/// conversion and checks, and the command's required options must be given.
+/// @throw CLI::ParseError (a UsageError in Python) naming the option: not an object, an
+///        unknown or mistyped option, a value its checks refuse, a required one missing.
+void set_options_from_json(CLI::App& command, const nlohmann::json& object);
+
+/// Retarget's options from typed values by long name (set_options_from_json); garment,
+/// avatar and out are required.
+/// @throw CLI::ParseError naming the option.
 RetargetOptions retarget_options_from_json(const nlohmann::json& object);
+
+/// Validate's options from typed values by long name (set_options_from_json): garment (an
+/// array for layers) and avatar are required; source is an array, one per garment.
+/// @throw CLI::ParseError naming the option.
+ValidateOptions validate_options_from_json(const nlohmann::json& object);
+
+/// Shrink's options from typed values by long name (set_options_from_json); garment,
+/// avatar and out are required. Unless quiet, progress goes to stderr.
+/// @throw CLI::ParseError naming the option.
+ShrinkRunOptions shrink_options_from_json(const nlohmann::json& object);
 
 /// Checks that each manifest option of `jobs` names a retarget option, a flag given as a
 /// boolean and any other option given a value, and parses each job's line into its typed

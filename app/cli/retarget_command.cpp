@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -192,41 +191,9 @@ void add_run_job_command(CLI::App& root, int& exit_code) {
 }
 
 RetargetOptions retarget_options_from_json(const nlohmann::json& object) {
-  if (!object.is_object()) throw CLI::ValidationError("retarget options", "must be an object");
   CLI::App root;
   RetargetBinding binding;
-  CLI::App* cmd = add_retarget_options(root, binding);
-  for (const auto& [key, value] : object.items()) {
-    std::string name = "--" + key;
-    std::replace(name.begin(), name.end(), '_', '-');
-    CLI::Option* option = cmd->get_option_no_throw(name);
-    if (option == nullptr || name == "--help")
-      throw CLI::ValidationError(name,
-                                 "not a retarget option (see garment-retarget retarget --help)");
-    if (option->get_expected_max() == 0) {
-      if (!value.is_boolean()) throw CLI::ValidationError(name, "a flag: give true or false");
-      if (!value.get<bool>()) continue;  // a flag left out
-      option->add_result(option->get_flag_value(name, ""));
-    } else {
-      const auto add = [&](const nlohmann::json& item) {
-        if (item.is_string())
-          option->add_result(item.get<std::string>());
-        else if (item.is_number())
-          option->add_result(item.dump());
-        else
-          throw CLI::ValidationError(name, "needs a number or a text");
-      };
-      if (value.is_array()) {
-        for (const nlohmann::json& item : value) add(item);
-      } else {
-        add(value);
-      }
-    }
-    option->run_callback();
-  }
-  for (const CLI::Option* option : cmd->get_options())
-    if (option->get_required() && option->count() == 0)
-      throw CLI::RequiredError(option->get_name());
+  set_options_from_json(*add_retarget_options(root, binding), object);
   return binding.typed();
 }
 

@@ -1,7 +1,7 @@
 """Refit garments onto avatars and certify the results, from Python.
 
 Each function runs the command of the same name of ``garment-retarget`` in this process
-(``batch`` starts one process per job, as the command does) and returns what it wrote as
+on typed options (``batch`` starts one process per job, as the command does) and returns what it wrote as
 dicts and NumPy arrays. Meshes are file paths or ``(V, F)`` pairs of arrays (#V×3 floats,
 #F×3 0-based ints). Errors raise ``UsageError`` (a bad option), ``InputError`` (a bad
 input file; both are ``ValueError``) or ``OutputError`` (an ``OSError``) with the command
@@ -15,12 +15,13 @@ import json
 import os
 import tempfile
 from pathlib import Path
-from typing import Any, Callable, Iterable
+from typing import Any, Iterable
 
 import numpy as np
 
-from ._core import (InputError, Outcome, OutputError, RetargetOptions, RetargetResult, UsageError, formats,
-                    outcome_names, parameters, read_mesh, run_command, run_retarget, version)
+from ._core import (InputError, Outcome, OutputError, RetargetOptions, RetargetResult, ShrinkOptions, ShrinkResult,
+                    UsageError, ValidateOptions, ValidateResult, formats, outcome_names, parameters, read_mesh,
+                    run_command, run_retarget, run_shrink, run_validate, version)
 
 __all__ = [
     "InputError",
@@ -28,7 +29,11 @@ __all__ = [
     "OutputError",
     "RetargetOptions",
     "RetargetResult",
+    "ShrinkOptions",
+    "ShrinkResult",
     "UsageError",
+    "ValidateOptions",
+    "ValidateResult",
     "batch",
     "formats",
     "parameters",
@@ -37,8 +42,12 @@ __all__ = [
     "retarget",
     "retarget_options",
     "run_retarget",
+    "run_shrink",
+    "run_validate",
     "shrink",
+    "shrink_options",
     "validate",
+    "validate_options",
     "version",
     "write_mesh",
 ]
@@ -119,18 +128,6 @@ class _Folder:
             self._temporary.cleanup()
 
 
-def _scene_command(command: str, garment: Any, avatar: Any, out: str | os.PathLike | None,
-                   options: dict[str, Any], outputs: Callable[[str, int], dict]) -> dict:
-    """Runs COMMAND --garment G --avatar A --out DIR with `options` (``quiet`` by default);
-    returns the exit code, what ``outputs(DIR, exit_code)`` reads and ``out``."""
-    options.setdefault("quiet", True)
-    with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
-        arguments = [command, "--garment", _mesh_file(garment, inputs, "garment"),
-                     "--avatar", _mesh_file(avatar, inputs, "avatar"), "--out", folder]
-        exit_code = run_command(arguments + _option_arguments(options))
-        return {"exit_code": exit_code, **outputs(folder, exit_code), "out": None if out is None else folder}
-
-
 def _json_value(value: Any) -> Any:
     """A keyword's value as JSON: paths as text, sequences as arrays, NumPy scalars as numbers."""
     if isinstance(value, os.PathLike):
@@ -142,14 +139,33 @@ def _json_value(value: Any) -> Any:
     return value
 
 
+def _typed(kind: Any, options: dict[str, Any]) -> Any:
+    """`kind` (a typed options class) from keywords by long name, in one conversion."""
+    keys = {key: _json_value(value) for key, value in options.items() if value is not None}
+    return kind.from_json(json.dumps(keys))
+
+
 def retarget_options(**options: Any) -> RetargetOptions:
     """Typed, checked ``retarget`` options from keywords by long name (``garment=``,
     ``source_skeleton=``, ``quality="fast"``, ``w_fit=10``, ``skirt=True``; None or False
     leaves one out). Each value goes through the command's own option and its checks;
     ``garment``, ``avatar`` and ``out`` are required. Raises ``UsageError`` naming the
     option."""
-    keys = {key: _json_value(value) for key, value in options.items() if value is not None}
-    return RetargetOptions.from_json(json.dumps(keys))
+    return _typed(RetargetOptions, options)
+
+
+def validate_options(**options: Any) -> ValidateOptions:
+    """Typed, checked ``validate`` options from keywords by long name, as `retarget_options`
+    makes them: ``garment`` and ``source`` take lists; ``garment`` and ``avatar`` are
+    required. Raises ``UsageError`` naming the option."""
+    return _typed(ValidateOptions, options)
+
+
+def shrink_options(**options: Any) -> ShrinkOptions:
+    """Typed, checked ``shrink`` options from keywords by long name, as `retarget_options`
+    makes them; ``garment``, ``avatar`` and ``out`` are required. Raises ``UsageError``
+    naming the option."""
+    return _typed(ShrinkOptions, options)
 
 
 def retarget(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **options: Any) -> dict:
@@ -196,43 +212,54 @@ def retarget(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **
 
 
 def validate(garments: Any, avatar: Any, sources: Iterable[Any] | None = None, **options: Any) -> dict:
-    """Checks garments exactly against an avatar (``garment-retarget validate``).
+    """Checks garments exactly against an avatar (``garment-retarget validate``), in this process.
 
     `garments` is one mesh or a list of them (layers); `sources`, one per garment, adds the
-    shape check. Options: ``threshold=``, ``max_listed=`` and the shape-check options.
-    Returns ``exit_code``, ``certified`` and ``report`` (the validation report as a dict).
+    shape check. Options: ``threshold=``, ``max_listed=``, ``report=``/``marks=``/``html=``
+    (files to write) and the shape-check options, made into typed options by
+    `validate_options`. Returns ``exit_code``, ``status`` (certified, not_certified or
+    shape_changed), ``certified``, ``message`` (the command's summary line) and ``report``
+    (the validation report as a dict).
     """
     if isinstance(garments, (str, os.PathLike)) or (
         isinstance(garments, tuple) and len(garments) == 2 and not isinstance(garments[0], (str, os.PathLike, tuple))
     ):
         garments = [garments]
     with tempfile.TemporaryDirectory(prefix="garment-retarget-validate-") as folder:
-        arguments = ["validate", "--avatar", _mesh_file(avatar, folder, "avatar")]
-        for g, garment in enumerate(garments):
-            arguments += ["--garment", _mesh_file(garment, folder, f"garment{g}")]
-        for s, source in enumerate(sources or []):
-            arguments += ["--source", _mesh_file(source, folder, f"source{s}")]
-        report_path = os.path.join(folder, "report.json")
-        exit_code = run_command(arguments + ["--report", report_path] + _option_arguments(options))
-        report = _read_json(report_path)
-        return {"exit_code": exit_code, "certified": bool(report and report.get("certified")), "report": report}
+        typed = validate_options(
+            garment=[_mesh_file(garment, folder, f"garment{g}") for g, garment in enumerate(garments)],
+            avatar=_mesh_file(avatar, folder, "avatar"),
+            source=[_mesh_file(source, folder, f"source{s}") for s, source in enumerate(sources or [])] or None,
+            **options)
+        result = run_validate(typed)
+        return {"exit_code": result.exit_code, "status": result.status_name, "certified": result.certified,
+                "message": result.summary, "report": result.report}
 
 
 def shrink(garment: Any, avatar: Any, out: str | os.PathLike | None = None, **options: Any) -> dict:
-    """Shrinks the avatar until it is certified free of the garment (``garment-retarget shrink``).
+    """Shrinks the avatar until it is certified free of the garment (``garment-retarget shrink``),
+    in this process.
 
-    Options: ``mode=``, ``voxel_size=``, skeletons and skin weights as in `retarget`;
-    ``quiet`` defaults to True. Returns ``exit_code``, ``found``, ``report`` (report.json)
-    and ``avatar``: the shrunk avatar as (V, F) arrays, None when none was found.
+    Options: ``mode=``, ``voxel_size=``, skeletons and skin weights as in `retarget`, made
+    into typed options by `shrink_options`; ``quiet`` defaults to True. Returns
+    ``exit_code``, ``status`` (certified, no_valid_shrink or limit_reached), ``found``,
+    ``message``, ``report`` (report.json), ``avatar``: the shrunk avatar as (V, F) arrays,
+    None when none was found, and ``out`` (None for a temporary folder).
     """
-    def outputs(folder: str, exit_code: int) -> dict:
+    options.setdefault("quiet", True)
+    with tempfile.TemporaryDirectory(prefix="garment-retarget-in-") as inputs, _Folder(out) as folder:
+        typed = shrink_options(garment=_mesh_file(garment, inputs, "garment"),
+                               avatar=_mesh_file(avatar, inputs, "avatar"), out=folder, **options)
+        result = run_shrink(typed)
         return {
-            "found": exit_code == 0,
+            "exit_code": result.exit_code,
+            "status": result.status_name,
+            "found": result.status == Outcome.certified,
+            "message": result.message,
             "report": _read_json(os.path.join(folder, "report.json")),
             "avatar": _read_mesh_if_present(os.path.join(folder, "shrunk_avatar.obj")),
+            "out": None if out is None else folder,
         }
-
-    return _scene_command("shrink", garment, avatar, out, options, outputs)
 
 
 def read_summary(out: str | os.PathLike) -> list[dict]:

@@ -9,6 +9,7 @@
 #include <nanobind/eigen/dense.h>
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/filesystem.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
@@ -23,6 +24,8 @@
 #include "retarget/parameters.hpp"
 #include "retarget/retarget.hpp"
 #include "retarget/run/run_control.hpp"
+#include "retarget/scene/shrink_avatar.hpp"
+#include "retarget/validate_run.hpp"
 
 namespace nb = nanobind;
 
@@ -201,15 +204,16 @@ nb::list formats() {
   return rows;
 }
 
-/// Runs the retarget pipeline on typed options in this process, without the GIL; Ctrl-C
-/// and SIGTERM stop it (KeyboardInterrupt). A run stopped by its limits returns
-/// Outcome::kLimitReached with the reason as its message.
-gr::RetargetResult run_retarget(const gr::RetargetOptions& options) {
-  gr::RetargetResult result;
+/// `run(options)` in this process, without the GIL; Ctrl-C and SIGTERM stop it
+/// (KeyboardInterrupt). A run stopped by its limits returns Outcome::kLimitReached with the
+/// reason as its message.
+template <class Result, class Options>
+Result run_stoppable(Result (*run)(const Options&), const Options& options) {
+  Result result;
   try {
     const SignalsStopRuns signals;
     const nb::gil_scoped_release unlocked;
-    result = gr::run_retarget(options);
+    result = run(options);
   } catch (const gr::Interrupted& stopped) {
     if (gr::report_stopped_run(stopped) == gr::to_exit_code(gr::Outcome::kInterrupted)) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
@@ -219,6 +223,85 @@ gr::RetargetResult run_retarget(const gr::RetargetOptions& options) {
     result.message = stopped.what();
   }
   return result;
+}
+
+/// Runs the retarget pipeline on typed options in this process, without the GIL; Ctrl-C
+/// and SIGTERM stop it (KeyboardInterrupt). A run stopped by its limits returns
+/// Outcome::kLimitReached with the reason as its message.
+gr::RetargetResult run_retarget(const gr::RetargetOptions& options) {
+  return run_stoppable(&gr::run_retarget, options);
+}
+
+/// Runs validate on typed options in this process, without the GIL.
+gr::ValidateResult run_validate(const gr::ValidateOptions& options) {
+  const nb::gil_scoped_release unlocked;
+  return gr::run_validate(options);
+}
+
+/// A result's `status` (an Outcome), and its `exit_code` and `status_name` from the outcome
+/// table.
+template <class Result>
+void bind_outcome(nb::class_<Result>& result) {
+  result.def_ro("status", &Result::status)
+      .def_prop_ro("exit_code", [](const Result& r) { return gr::to_exit_code(r.status); })
+      .def_prop_ro("status_name", [](const Result& r) { return gr::to_string(r.status); });
+}
+
+/// Options.from_json(text): the options `from_json` makes of a JSON object's text.
+template <class Options>
+void bind_from_json(nb::class_<Options>& options, Options (*from_json)(const nlohmann::json&),
+                    const char* doc) {
+  options.def_static(
+      "from_json",
+      [from_json](const std::string& text) { return from_json(nlohmann::json::parse(text)); },
+      nb::arg("text"), doc);
+}
+
+/// Binds validate's and shrink's typed options, their results and their runs on `m`.
+void bind_validate_and_shrink(nb::module_& m) {
+  nb::class_<gr::ValidateOptions> validate_options(
+      m, "ValidateOptions", "Everything validate can be asked, typed and checked.");
+  bind_from_json(validate_options, &gr::validate_options_from_json,
+                 "The options from a JSON object of validate's long option names ('_' or '-'): "
+                 "flags as booleans, repeatable options (garment, source) as arrays.");
+  validate_options.def_ro("garments", &gr::ValidateOptions::garments)
+      .def_ro("avatar", &gr::ValidateOptions::avatar)
+      .def_ro("sources", &gr::ValidateOptions::sources)
+      .def_ro("threshold", &gr::ValidateOptions::threshold)
+      .def_ro("max_listed", &gr::ValidateOptions::max_listed);
+  nb::class_<gr::ValidateResult> validate_result(m, "ValidateResult", "How a validation ended.");
+  bind_outcome(validate_result);
+  validate_result
+      .def_prop_ro("certified", [](const gr::ValidateResult& r) { return gr::certified(r.status); })
+      .def_prop_ro("report",
+                   [](const gr::ValidateResult& r) {
+                     return nb::module_::import_("json").attr("loads")(r.report.dump());
+                   })
+      .def_ro("summary", &gr::ValidateResult::summary)
+      .def_ro("warnings", &gr::ValidateResult::warnings);
+  m.def("run_validate", &run_validate, nb::arg("options"),
+        "Runs validate on typed options in this process and returns its ValidateResult.");
+  nb::class_<gr::ShrinkRunOptions> shrink_options(
+      m, "ShrinkOptions", "Everything shrink can be asked, typed and checked.");
+  bind_from_json(shrink_options, &gr::shrink_options_from_json,
+                 "The options from a JSON object of shrink's long option names ('_' or '-'): "
+                 "flags as booleans.");
+  shrink_options.def_ro("out_dir", &gr::ShrinkRunOptions::out_dir)
+      .def_ro("voxel_size", &gr::ShrinkRunOptions::voxel_size)
+      .def_prop_ro("garment", [](const gr::ShrinkRunOptions& o) { return o.inputs.garment; })
+      .def_prop_ro("avatar", [](const gr::ShrinkRunOptions& o) { return o.inputs.avatar; })
+      .def_prop_ro("mode", [](const gr::ShrinkRunOptions& o) { return gr::to_string(o.mode); })
+      .def_ro("quiet", &gr::ShrinkRunOptions::quiet);
+  nb::class_<gr::ShrinkRunResult> shrink_result(m, "ShrinkResult", "How a shrink run ended.");
+  bind_outcome(shrink_result);
+  shrink_result.def_ro("avatar_path", &gr::ShrinkRunResult::avatar_path)
+      .def_ro("report_path", &gr::ShrinkRunResult::report_path)
+      .def_ro("message", &gr::ShrinkRunResult::message);
+  m.def(
+      "run_shrink",
+      [](const gr::ShrinkRunOptions& options) { return run_stoppable(&gr::run_shrink, options); },
+      nb::arg("options"),
+      "Runs shrink on typed options in this process and returns its ShrinkResult.");
 }
 
 }  // namespace
@@ -271,6 +354,7 @@ NB_MODULE(_core, m) {
       .def_ro("message", &gr::RetargetResult::message);
   m.def("run_retarget", &run_retarget, nb::arg("options"),
         "Runs retarget on typed options in this process and returns its RetargetResult.");
+  bind_validate_and_shrink(m);
   m.def("run_command", &run_command, nb::arg("arguments"),
         "Runs `garment-retarget ARGUMENTS...` in this process and returns its exit code.");
   m.def("read_mesh", &read_mesh, nb::arg("path"),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <set>
@@ -37,6 +38,30 @@ void check_options(const ShrinkRunOptions& options, const Scene& scene) {
     throw InputError("", 0, "voxel size must be a positive number (normalized units)");
   require_skeletons_for(options.mode, scene.source_skeleton.has_value(), options.inputs.avatar);
 }
+
+/// Prints each stage's progress on stderr in steps of a tenth, and passes everything on.
+class StderrProgress final : public ForwardingInterrupter {
+ public:
+  using ForwardingInterrupter::ForwardingInterrupter;
+  void start(const std::string& stage) override {
+    stage_ = stage;
+    next().start(stage);
+  }
+  void progress(double fraction) override {
+    const int tenth = static_cast<int>(fraction * 10.0);
+    if (stage_ != printed_stage_ || tenth != printed_tenth_) {
+      std::fprintf(stderr, "shrink: %s %3d%%\n", stage_.c_str(), tenth * 10);
+      printed_stage_ = stage_;
+      printed_tenth_ = tenth;
+    }
+    next().progress(fraction);
+  }
+
+ private:
+  std::string stage_;
+  std::string printed_stage_;
+  int printed_tenth_ = -1;
+};
 
 /// What `garment-retarget shrink` hands to its work: the caller's interrupter sees the
 /// stages and progress and may stop it first; then the run's limits, whose stop names the
@@ -145,7 +170,9 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   const Scene scene = load_scene(options.inputs);
   check_options(options, scene);
   require_within_limits(scene, options.limits);
-  ShrinkRunInterrupter interrupter(or_null(options.interrupter), control);
+  StderrProgress stderr_progress(or_null(options.interrupter));
+  ShrinkRunInterrupter interrupter(options.quiet ? or_null(options.interrupter) : stderr_progress,
+                                   control);
   const NormalizedScene normalized = make_normalized_scene(scene);
   const Normalization& normalization = normalized.normalization;
   const TriangleMesh& avatar = normalized.avatar;
@@ -156,10 +183,11 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   nlohmann::json report;
   auto write_report_and_commit = [&]() {
     report["seconds"] = stopwatch.seconds();
-    if (!run.found && folder.has_previous()) report["previous_result"] = folder.previous_path();
+    if (run.status != Outcome::kCertified && folder.has_previous())
+      report["previous_result"] = folder.previous_path();
     write_file_atomically((out / "report.json").string(),
                           [&](std::ostream& os) { os << std::setw(2) << report << '\n'; });
-    folder.commit(!run.found);
+    folder.commit(run.status != Outcome::kCertified);
   };
   report = {{"mode", to_string(options.mode)},
             {"avatar", options.inputs.avatar},
@@ -225,7 +253,7 @@ ShrinkRunResult run_shrink(const ShrinkRunOptions& options) {
   if (!warnings.empty()) report["warnings"] = warnings;
   write_obj((out / "shrunk_avatar.obj").string(), scene.avatar_document, positions);
 
-  run.found = true;
+  run.status = Outcome::kCertified;
   report["found"] = true;
   report["depth"] = run.shrink.depth;
   report["depth_garment_units"] = run.shrink.depth / garment_frame.scale;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/common/interrupter.hpp"
+#include "retarget/outcome.hpp"
 #include "retarget/run/run_control.hpp"
 #include "retarget/scene/scene.hpp"
 #include "shrink/shrunk_avatar/shrink_result.hpp"
@@ -73,14 +74,16 @@ struct ShrinkRunOptions {
   /// The caller's: told the stages and their progress, and asked whether to stop besides
   /// the limits; null: none. It must outlive the run.
   Interrupter* interrupter = nullptr;
-  RunLimits limits;  ///< input sizes, faces, memory and time the run may take
+  bool quiet = false;  ///< no progress on stderr
+  RunLimits limits;    ///< input sizes, faces, memory and time the run may take
   /// Copy material files and textures that symbolic links lead to outside the OBJ's folder.
   bool allow_external_assets = false;
 };
 
 struct ShrinkRunResult {
-  bool found = false;       ///< a certified shrunk avatar was written
-  std::string avatar_path;  ///< DIR/shrunk_avatar.obj when found
+  /// kCertified: a certified shrunk avatar was written; else kNoValidShrink.
+  Outcome status = Outcome::kNoValidShrink;
+  std::string avatar_path;  ///< DIR/shrunk_avatar.obj when certified
   std::string report_path;  ///< DIR/report.json, written either way
   std::string message;      ///< one line for the user
   ShrinkResult shrink;
