@@ -177,8 +177,6 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   const PrepareOutput prepared = run_prepare(
       {scene, options.inputs}, {std::min(parameters.dhat, parameters.fit_support())}, progress);
   const NormalizedScene& normalized = prepared.normalized;
-  double& min_separation = report.parameters.solver.ccd.min_separation;
-  min_separation = std::max(min_separation, prepared.ccd_min_separation);
   const InferOutput inferred = run_infer(
       {scene, normalized, options.inputs, read.shrink_mode},
       {options.inference, options.fit_mode, run.out().string(), report.parameters.voxel_size},
@@ -203,12 +201,9 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   if (solved.failure) return run.finish(solved.failure->first, solved.failure->second);
   const MatrixX3d& garment = solved.fit.fit.garment;
 
-  // Skin weights bound to the target skeleton when none were given: a written GLB's skin.
-  const Eigen::MatrixXd bound_skin_weights =
-      report.inferred.skin_weights_inferred ? inferred.skin_weights : Eigen::MatrixXd();
   const WriteOutput written =
       run_write({scene, normalized, garment, shrink.pierced_faces, distance_field,
-                 bound_skin_weights, run.out().string()},
+                 inferred.bound_skin_weights(), run.out().string()},
                 {options.format, options.split, options.allow_external_assets,
                  options.skin_transfer, parameters.dhat},
                 progress);

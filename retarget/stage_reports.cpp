@@ -12,6 +12,8 @@ void record_inputs(RetargetReport& report, const ReadOutput& read, const Prepare
   report.seconds.read = read.seconds;
   report.normalize = prepare.report;
   report.repairs = prepare.repairs;
+  double& min_separation = report.parameters.solver.ccd.min_separation;
+  min_separation = std::max(min_separation, prepare.ccd_min_separation);
   report.seconds.normalize = prepare.seconds;
   report.inferred = inferred.inferred;
   report.ease = inferred.ease;

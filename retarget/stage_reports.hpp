@@ -17,7 +17,8 @@ namespace gr {
 
 /// Each stage's output recorded into its part of the run's report.
 
-/// The report parts of the read, prepare and infer stages.
+/// The report parts of the read, prepare and infer stages, and the CCD separation the
+/// prepare stage's rounding asks for (PrepareOutput::ccd_min_separation).
 void record_inputs(RetargetReport& report, const ReadOutput& read, const PrepareOutput& prepare,
                    const InferOutput& inferred);
 

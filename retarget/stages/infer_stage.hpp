@@ -38,6 +38,11 @@ struct InferOutput {
   /// empty (nearest bone).
   Eigen::MatrixXd skin_weights;
   InferenceReport inferred;
+  /// The skin weights bound to the target skeleton when none were given (a written GLB's
+  /// skin takes them); empty when they were given.
+  Eigen::MatrixXd bound_skin_weights() const {
+    return inferred.skin_weights_inferred ? skin_weights : Eigen::MatrixXd();
+  }
   EaseReport ease;
   double binding_seconds = 0.0;
 };

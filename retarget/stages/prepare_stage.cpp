@@ -102,7 +102,7 @@ PrepareOutput run_prepare(const PrepareInput& input, const PrepareOptions& optio
   const StageTimer timer;
   Scene& scene = input.scene;
   PrepareOutput out;
-  Repairing repairing{scene, input.paths, out};
+  Repairing repairing{scene, input.paths, out, {}};
   for (const Repair repair : kRepairsAsRead) repair(repairing);
   out.normalized = normalize(scene, options.thinnest_barrier, repairing.crossing_pairs);
   const NormalizedScene& normalized = out.normalized;

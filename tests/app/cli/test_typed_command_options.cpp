@@ -73,11 +73,11 @@ TEST_CASE("typed shrink options go through the command's own options and checks"
   CHECK(options.voxel_size == 0.05);
   CHECK(options.limits.timeout_seconds == 30.0);
   CHECK_FALSE(options.allow_external_assets);
-  CHECK_FALSE(options.progress);  // quiet
+  CHECK(options.quiet);
   const ShrinkRunOptions defaults = shrink_options_from_json(scene);
   CHECK(defaults.mode == ShrinkMode::kLevelset);
   CHECK(defaults.voxel_size == ShrinkRunOptions{}.voxel_size);
-  CHECK(defaults.progress);  // not quiet: progress on stderr
+  CHECK_FALSE(defaults.quiet);  // progress on stderr
 
   const auto refused = [&](const std::string& key, const nlohmann::json& value) {
     nlohmann::json bad = scene;

@@ -81,12 +81,13 @@ struct StageChain {
     return *solver_;
   }
   const InflateOutput& inflate() {
-    if (!inflate_) inflate_ = run_inflate({solver()}, {parameters.solver, {}}, progress);
+    if (!inflate_) inflate_ = run_inflate({solver()}, {parameters.solver, {}, {}}, progress);
     return *inflate_;
   }
   const FitOutput& fit() {
     if (!fit_)
-      fit_ = run_fit({solver(), inflate().inflation.garment}, {parameters.solver}, progress);
+      fit_ =
+          run_fit({solver(), inflate().inflation.garment}, {parameters.solver, 0.0, {}}, progress);
     return *fit_;
   }
   const WriteOutput& write() {
