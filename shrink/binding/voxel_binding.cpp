@@ -259,10 +259,12 @@ bool sees_through_interior(const InteriorVoxels& voxels, const Vector3d& p, cons
 }
 
 /// Per vertex, its distance to every segment (#V×#S, infinity where unreachable), through
-/// the interior; rows of vertices with no interior voxel near are all infinite.
+/// the interior: along shortest interior paths when `geodesic` (kGeodesic), else straight
+/// to the segments it sees (kVisible, and kHeat's start). Rows of vertices with no interior
+/// voxel near are all infinite.
 Eigen::MatrixXd vertex_segment_distances(const TriangleMesh& avatar,
                                          const std::vector<BoneSegment>& segments,
-                                         const InteriorVoxels& voxels, BindingMethod method) {
+                                         const InteriorVoxels& voxels, bool geodesic) {
   const Eigen::Index vertex_count = avatar.vertices.rows();
   const auto segment_count = static_cast<Eigen::Index>(segments.size());
   Eigen::MatrixXd distances = Eigen::MatrixXd::Constant(vertex_count, segment_count, kInfinity);
@@ -271,7 +273,7 @@ Eigen::MatrixXd vertex_segment_distances(const TriangleMesh& avatar,
     attached[static_cast<std::size_t>(v)] =
         attached_voxels(voxels, avatar.vertices.row(v).transpose());
   });
-  if (method == BindingMethod::kGeodesic) {
+  if (geodesic) {
     std::vector<std::vector<double>> field(segments.size());
     tbb::parallel_for(std::size_t(0), segments.size(),
                       [&](std::size_t s) { field[s] = interior_distances(voxels, segments[s]); });
@@ -470,7 +472,6 @@ const char* to_string(BindingMethod method) {
 Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
                       const BindingOptions& options) {
   check_inputs(avatar, skeleton, options);
-  const bool heat = options.method == BindingMethod::kHeat;
   const Stopwatch stopwatch;
   Interrupter& interrupter = or_null(options.interrupter);
   interrupter.start("binding");
@@ -487,9 +488,11 @@ Binding bind_skeleton(const TriangleMesh& avatar, const Skeleton& skeleton,
   binding.interior_voxels = voxels.count();
   interrupter.start("binding");
   interrupter.checkpoint(0.3);
-  Eigen::MatrixXd distances = vertex_segment_distances(
-      avatar, segments, voxels, heat ? BindingMethod::kVisible : options.method);
+  // A bool, not `heat ? kVisible : method`: GCC 12.2 -O2 then folds `heat` to false (phiopt).
+  Eigen::MatrixXd distances = vertex_segment_distances(avatar, segments, voxels,
+                                                       options.method == BindingMethod::kGeodesic);
   interrupter.checkpoint(0.9);
+  const bool heat = options.method == BindingMethod::kHeat;
   const Eigen::MatrixXd visible = heat ? distances : Eigen::MatrixXd();
   bind_unreached(avatar, segments, distances, binding);
   const auto joint_count = static_cast<int>(skeleton.joints.rows());
