@@ -73,16 +73,18 @@ class RetargetRun {
   }
 
   /// The shrink found no avatar free of the garment: the closest one tried is written.
-  RetargetResult no_valid_shrink(const NoValidShrinkError& e, const Scene& scene,
-                                 const NormalizedScene& normalized, ShrinkMode mode) {
+  RetargetResult no_valid_shrink(const NoValidShrinkError& e, const ShrinkInput& input,
+                                 ShrinkMode mode) {
+    const Scene& scene = input.scene;
+    const NormalizedScene& normalized = input.normalized;
     result_.report.shrink.conflict =
         write_closest_shrink(out_.string(), options_.out_dir, scene, normalized, e);
     const Vector3d where = normalized.normalization.garment_to_scene.invert(e.conflict().position);
-    return finish(Outcome::kNoValidShrink,
-                  fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the "
-                              "garment's frame){}",
-                              e.what(), where.x(), where.y(), where.z(),
-                              pierced_cause(scene, normalized, mode)));
+    return finish(
+        Outcome::kNoValidShrink,
+        fmt::format("no valid shrink: {} (near ({:.6g}, {:.6g}, {:.6g}) in the "
+                    "garment's frame){}",
+                    e.what(), where.x(), where.y(), where.z(), pierced_cause(input, mode)));
   }
 
   /// Inferred no-fit lists are written into the folder: the report names their final place.
@@ -191,8 +193,7 @@ RetargetResult run_retarget(const RetargetOptions& options) {
                                      options.open_pierced_faces};
   ShrinkOutput shrink = run_shrink(shrink_input, shrink_options, progress);
   record_shrink(report, shrink, inferred);
-  if (shrink.failure)
-    return run.no_valid_shrink(*shrink.failure, scene, normalized, read.shrink_mode);
+  if (shrink.failure) return run.no_valid_shrink(*shrink.failure, shrink_input, read.shrink_mode);
   const GridDistanceField distance_field(shrink.grid);
   const SolveOutput solved =
       run_solve({scene, normalized, prepared.inherited, shrink_input, shrink_options,

@@ -41,7 +41,7 @@ void fields(ScenePaths& p, V& v) {
 
 template <typename V>
 void fields(BindingOptions& o, V& v) {
-  // The method follows InferenceOptions::binding; the progress callback is the run's.
+  // The method follows InferenceOptions::binding; the interrupter is the run's.
   v("resolution", o.resolution);
   v("falloff", o.falloff);
   v("distance_ratio", o.distance_ratio);

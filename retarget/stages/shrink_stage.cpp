@@ -117,13 +117,11 @@ NormalizedScene scene_without_faces(const NormalizedScene& normalized,
   return scene;
 }
 
-std::string pierced_cause(const Scene& scene, const NormalizedScene& normalized, ShrinkMode mode) {
-  if (mode != ShrinkMode::kSkeleton || !normalized.source_skeleton) return "";
-  const std::vector<FacePair> pierced =
-      faces_pierced_by_bones(normalized.garment, *normalized.source_skeleton);
-  if (pierced.empty()) return "";
-  return "; " + describe_pierced_faces(pierced, scene.garment.face_to_obj,
-                                       *normalized.source_skeleton, scene.joint_names);
+std::string pierced_cause(const ShrinkInput& input, ShrinkMode mode) {
+  const std::vector<FacePair>& pierced = input.pierced_by_bones.pairs;
+  if (mode != ShrinkMode::kSkeleton || pierced.empty()) return "";
+  return "; " + describe_pierced_faces(pierced, input.scene.garment.face_to_obj,
+                                       *input.normalized.source_skeleton, input.scene.joint_names);
 }
 
 ShrinkOutput run_shrink(const ShrinkInput& input, const ShrinkOptions& options,

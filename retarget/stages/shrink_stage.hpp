@@ -70,7 +70,8 @@ NormalizedScene scene_without_faces(const NormalizedScene& normalized,
                                     const std::vector<int>& pierced_faces);
 
 /// Why a skeleton shrink cannot be free of the garment when its bones pass through garment
-/// faces (a closed shell, a capped leg): "; " and the faces and bones, else "".
-std::string pierced_cause(const Scene& scene, const NormalizedScene& normalized, ShrinkMode mode);
+/// faces (a closed shell, a capped leg; input.pierced_by_bones): "; " and the faces and
+/// bones, else "".
+std::string pierced_cause(const ShrinkInput& input, ShrinkMode mode);
 
 }  // namespace gr
