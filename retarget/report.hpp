@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "retarget/stages/animate_stage.hpp"
 #include "core/solver/guide_path.hpp"
 #include "garment/fit/ease.hpp"
 #include "garment/fit/fit_error.hpp"
@@ -206,9 +207,11 @@ struct RetargetReport {
   SkinTransferReport skin;  ///< written with a GLB garment
   CertifyReport certify;
   std::optional<OutfitReport> outfit;  ///< set for several garments
+  std::optional<AnimateOutput> animation;  ///< set when clips were played (--animation)
 
   std::vector<std::string> warnings;
-  bool certified() const { return certify.certified; }
+  /// The written garment certified, and every sampled frame of the clips played.
+  bool certified() const { return certify.certified && (!animation || animation->certified()); }
 };
 
 nlohmann::json to_json(const RetargetReport& report);

@@ -9,8 +9,11 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "core/common/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/formats/mesh_formats.hpp"
 #include "garment/repairs/inherited_crossings.hpp"
+#include "retarget/animation/animation_clips.hpp"
 #include "retarget/result_page.hpp"
 #include "retarget/run/output_folder.hpp"
 #include "retarget/run/progress.hpp"
@@ -131,6 +134,9 @@ class RetargetRun {
                                 const CertifyOutput& certified) {
     const RetargetReport& report = result_.report;
     std::string summary = certify_summary(certified.certificate, report, total_.seconds());
+    if (report.animation)
+      for (const AnimationReport& clip : report.animation->clips)
+        summary += "; " + clip_summary(clip.written);
     progress_.log("certify", "{}", summary);
     Outcome status = report.certified() ? Outcome::kCertified : Outcome::kNotCertified;
     const ShapeThresholds& thresholds = report.certify.shape_thresholds;
@@ -164,9 +170,23 @@ class RetargetRun {
   const StageTimer total_;
 };
 
+/// --animation plays skinned glTF files: refused before the solve where the run could not
+/// write them, or where a clip cannot be found.
+void check_animation_request(const RetargetOptions& options) {
+  if (options.animations.empty()) return;
+  const MeshFormat& written =
+      options.format ? *options.format : mesh_format_for_path(options.inputs.garment);
+  if (!written.skinned || !mesh_format_for_path(options.inputs.avatar).skinned)
+    throw InputError(options.inputs.avatar, 0,
+                     "--animation needs a glTF avatar with a skin and a skinned output "
+                     "(--format glb)");
+  choose_clips(options.animations, options.inputs.avatar);
+}
+
 }  // namespace
 
 RetargetResult run_retarget(const RetargetOptions& options) {
+  check_animation_request(options);
   RetargetRun run(options);
   RetargetReport& report = run.report();
   Progress& progress = run.progress();
@@ -225,6 +245,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
         {given_order, options.write_avatar, parameters.dhat, {}}, progress);
     record_outfit(report, outfit.report, scene, written, files.recorded, certified);
   }
+  if (!options.animations.empty() && report.certified())
+    report.animation = run_animate(
+        {files.staged, files.meshes, options.inputs.avatar, options.inputs.avatar_meshes},
+        {options.animations, options.fps, parameters}, progress);
   return run.finish_checked(scene, normalized.normalization, certified);
 }
 

@@ -64,6 +64,11 @@ struct RetargetOptions {
   /// avatar contact, and out of the written garment where the avatar still passes through
   /// them at the end) or refuse (no valid shrink, naming the faces and bones).
   bool open_pierced_faces = true;
+  /// Clips to play the written garment through (see ValidateOptions::animations): every
+  /// sampled frame where skinning lets it cross is corrected, the corrections written as
+  /// morph targets, and every frame certified. Needs a skinned GLB avatar and output.
+  std::vector<std::string> animations;
+  double fps = 30.0;  ///< frames sampled per second of a clip
 };
 
 /// How a retarget run ended: kCertified, kNotCertified, kNoValidShrink, kSolverFailure or

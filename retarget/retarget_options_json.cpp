@@ -120,6 +120,8 @@ void fields(RetargetOptions& o, V& v) {
   v("allow_external_assets", o.allow_external_assets);
   v("write_in_place", o.write_in_place);
   v("open_pierced_faces", o.open_pierced_faces);
+  v("animations", o.animations);
+  v("fps", o.fps);
 }
 
 const char* name_of(BindingChoice choice) { return to_string(choice); }

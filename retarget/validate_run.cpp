@@ -6,6 +6,7 @@
 
 #include "core/common/errors.hpp"
 #include "core/io/gltf_document.hpp"
+#include "retarget/animation/animation_check.hpp"
 #include "retarget/result_page.hpp"
 #include "retarget/run/output_folder.hpp"
 #include "validate/certify/validation.hpp"
@@ -104,6 +105,17 @@ ValidateResult run_validate(const ValidateOptions& given) {
       result.warnings.push_back(
           fmt::format("garment {}: shape changed beyond its threshold: {}", g, violation));
   }
+  std::vector<ClipFindings> clips;
+  if (!options.animations.empty()) {
+    const AnimatedScene scene = read_animated_scene(options.garments, options.garment_meshes,
+                                                    options.avatar, options.avatar_meshes);
+    nlohmann::ordered_json& section = result.report["animations"];
+    section = nlohmann::ordered_json::array();
+    for (const ChosenClip& clip : choose_clips(options.animations, options.avatar)) {
+      clips.push_back(check_clip(scene, clip, options.fps));
+      section.push_back(to_json(clips.back()));
+    }
+  }
   StagedFiles outputs;
   if (!options.report.empty()) write_json_file(outputs.stage(options.report), result.report);
   if (!options.marks.empty()) write_marks_obj(outputs.stage(options.marks), validation);
@@ -118,7 +130,12 @@ ValidateResult run_validate(const ValidateOptions& given) {
         g, shapes[g].scale, shapes[g].mean_edge_change, shapes[g].p95_edge_change,
         shapes[g].area_change, shapes[g].loop_displacement);
   if (!result.warnings.empty()) result.summary += "; SHAPE CHANGED beyond its thresholds";
-  result.status = !validation.result.certified() ? Outcome::kNotCertified
+  bool frames_cross = false;
+  for (const ClipFindings& clip : clips) {
+    result.summary += "; " + clip_summary(clip);
+    frames_cross = frames_cross || clip.crossing_frames() > 0;
+  }
+  result.status = !validation.result.certified() || frames_cross ? Outcome::kNotCertified
                   : result.warnings.empty()      ? Outcome::kCertified
                                                  : Outcome::kShapeChanged;
   return result;

@@ -32,6 +32,10 @@ struct ValidateOptions {
   /// no shape check.
   std::vector<std::string> sources;
   ShapeThresholds shape_thresholds;
+  /// Clips to play the skinned garments and avatar through, every sampled frame checked
+  /// exactly (see choose_clips for what a spec names); empty: the files' pose only.
+  std::vector<std::string> animations;
+  double fps = 30.0;  ///< frames sampled per second of a clip
 };
 
 /// How a validation ended.

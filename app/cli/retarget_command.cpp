@@ -113,6 +113,16 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
   add_inference_options(*cmd, options->inputs, options->inference, &binding.garments);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--animation", options->animations,
+                  "Play the written garment with the avatar through a glTF animation (a clip "
+                  "of the avatar's file by name, 'all', a glTF file or FILE#NAME; repeatable): "
+                  "frames where skinning lets it cross are corrected and written as morph "
+                  "targets with the clip, and every sampled frame is certified; needs a "
+                  "skinned GLB avatar and output")
+      ->take_all();
+  cmd->add_option("--fps", options->fps, "Frames sampled per second of an animation")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_flag("--frames", options->frames, "Write intermediate garment and avatar OBJs");
   cmd->add_flag("--png", options->png,
                 "Also write OUT/front.png and OUT/side.png: the result rendered without a browser");

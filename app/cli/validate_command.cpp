@@ -49,11 +49,21 @@ CLI::App* add_validate_options(CLI::App& root, ValidateOptions& options) {
                   "itself are counted as inherited, apart from new ones, and do not fail the "
                   "check")
       ->take_all();
+  cmd->add_option("--animation", options.animations,
+                  "Play the skinned garments and avatar through a glTF animation and check "
+                  "every sampled frame exactly: a clip of the avatar's file by name, 'all' of "
+                  "them, a glTF file (all its clips) or FILE#NAME; a clip from another file "
+                  "drives the joints of the same names, with only the root joints' "
+                  "translations; repeatable")
+      ->take_all();
+  cmd->add_option("--fps", options.fps, "Frames sampled per second of an animation")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   add_shape_check_options(*cmd, options.shape_thresholds);
   cmd->footer(
       "Exit codes: 0 certified (and, with --source, shape within its thresholds), 1\n"
-      "intersections found, 2 bad input, 7 certified but the shape changed beyond the\n"
-      "thresholds.");
+      "intersections found (in the files' pose or in a frame of an animation), 2 bad\n"
+      "input, 7 certified but the shape changed beyond the thresholds.");
   return cmd;
 }
 

@@ -25,7 +25,9 @@ DofLayout layout_for(const GarmentScene& scene, GarmentProblem::Stage stage) {
 const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage stage) {
   if (scene.shrunk_avatar.rows() != scene.avatar.vertices.rows())
     throw std::invalid_argument("the shrunk avatar must have the target avatar's vertex count");
-  if (stage == GarmentProblem::Stage::kFit && !scene.distance_field)
+  if (scene.tracked.size() > 0 && scene.tracked.rows() != scene.garment.vertices.rows())
+    throw std::invalid_argument("the tracked positions must have the garment's vertex count");
+  if (stage == GarmentProblem::Stage::kFit && !scene.distance_field && scene.tracked.size() == 0)
     throw std::invalid_argument("the fit step needs the avatar's distance field");
   return scene;
 }
@@ -80,14 +82,21 @@ GarmentProblem::GarmentProblem(const GarmentScene& scene, const RetargetParamete
   } else {
     if (parameters.w_stretch > 0.0)
       add_term<StretchEnergy>(parameters.w_stretch, scene.garment, layout_);
-    if (parameters.w_anchor > 0.0)
+    // A tracked frame has its own places for every vertex, boundary loops included.
+    if (parameters.w_anchor > 0.0 && scene.tracked.size() == 0)
       add_term<AnchorEnergy>(parameters.w_anchor, scene.garment.vertices,
                              boundary_loop_vertices(scene.garment.faces), layout_);
   }
   if (!scene.ties.empty()) add_term<TieEnergy>(parameters.w_tie, scene.ties, layout_);
   if (!scene.attachments.empty())
     add_term<AttachmentEnergy>(parameters.w_attach, scene.attachments, layout_);
-  if (stage == Stage::kFit)
+  if (stage == Stage::kFit && scene.tracked.size() > 0) {
+    std::vector<int> all(static_cast<std::size_t>(scene.garment.vertices.rows()));
+    std::iota(all.begin(), all.end(), 0);
+    add_term<AnchorEnergy>(parameters.w_track, scene.tracked, std::move(all), layout_,
+                           vertex_area_shares(scene.garment.vertices, scene.garment.faces),
+                           "track");
+  } else if (stage == Stage::kFit)
     add_term<FitEnergy>(parameters.w_fit, scene.garment, scene.no_fit, *scene.distance_field,
                         parameters.fit_samples_per_face, layout_, scene.fit_offsets);
   constraint_.displacement_sq = (scene.avatar.vertices - scene.shrunk_avatar).squaredNorm();

@@ -58,6 +58,10 @@ struct GarmentScene {
   /// Vertices of pieces laid on or through another piece, carried by its triangles
   /// (AttachmentEnergy).
   std::vector<Attachment> attachments;
+  /// Per garment vertex, where a frame of an animation puts it by skinning (#Vg×3; empty:
+  /// none). The fit step then pulls every vertex toward it, weighted by its share of the
+  /// area (AnchorEnergy "track"), instead of onto the avatar, and needs no distance field.
+  MatrixX3d tracked;
 };
 
 /// The objective of Step 2 (inflation: x = [t, Vg], L_surf + L_contact + L_pos + the AL on

@@ -47,6 +47,10 @@ struct RetargetParameters {
   /// crosses instead of sliding through it.
   double w_attach = 1e4;
   double w_fit = 2.0;  ///< fit step only
+  /// A frame of an animation, corrected: every vertex pulled toward where skinning puts it,
+  /// weighted by its share of the garment's area (GarmentScene::tracked), against the
+  /// shape term that keeps the garment's rest shape.
+  double w_track = 100.0;
   /// The fit's Newton step cap; 0: newton.max_iterations, as every inflation round.
   int fit_max_iterations = 0;
   int fit_iteration_cap() const {

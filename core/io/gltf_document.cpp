@@ -79,7 +79,9 @@ std::string first_line(const std::string& text) {
   return end == std::string::npos ? text : text.substr(0, end);
 }
 
-tinygltf::Model load_model(const std::string& path) {
+}  // namespace
+
+tinygltf::Model load_gltf_model(const std::string& path) {
   require_regular_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open the file");
@@ -123,6 +125,8 @@ tinygltf::Model load_model(const std::string& path) {
   return model;
 }
 
+namespace {
+
 /// A node's matrix relative to its parent (its `matrix`, else T * R * S).
 Eigen::Matrix4d local_matrix(const tinygltf::Node& node) {
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
@@ -142,6 +146,27 @@ Eigen::Matrix4d local_matrix(const tinygltf::Node& node) {
     m.topRightCorner<3, 1>() =
         Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]);
   return m;
+}
+
+/// A joint node's rest translation, rotation and scale (see SkinJoint).
+void set_rest_transform(const tinygltf::Node& node, SkinJoint& joint) {
+  if (node.matrix.size() == 16) {
+    const Eigen::Affine3d local(local_matrix(node));
+    Eigen::Matrix3d rotation;
+    Eigen::Matrix3d scaling;
+    local.computeRotationScaling(&rotation, &scaling);
+    joint.translation = local.translation();
+    joint.rotation = Eigen::Quaterniond(rotation);
+    joint.scale = scaling.diagonal();
+    return;
+  }
+  if (node.translation.size() == 3)
+    joint.translation = {node.translation[0], node.translation[1], node.translation[2]};
+  if (node.rotation.size() == 4)
+    joint.rotation =
+        Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])
+            .normalized();
+  if (node.scale.size() == 3) joint.scale = {node.scale[0], node.scale[1], node.scale[2]};
 }
 
 /// World matrices and parents of every node, and the nodes in scene order (depth first
@@ -263,6 +288,15 @@ SkinBinding read_skin(const tinygltf::Model& model, int skin_index, const NodeGr
         break;
       }
     joint.world = graph.world[node];
+    set_rest_transform(model.nodes[node], joint);
+    if (const int parent_node = graph.parent[node]; parent_node >= 0) {
+      joint.parent_offset = graph.world[static_cast<std::size_t>(parent_node)];
+      if (joint.parent >= 0)
+        joint.parent_offset = graph.world[static_cast<std::size_t>(
+                                               skin.joints[static_cast<std::size_t>(joint.parent)])]
+                                  .inverse() *
+                              joint.parent_offset;
+    }
     joint.inverse_bind.setIdentity();
     if (!inverse_bind.empty())
       for (int i = 0; i < 16; ++i)
@@ -302,7 +336,7 @@ void add_influences(const tinygltf::Model& model, const tinygltf::Primitive& pri
 }  // namespace
 
 std::vector<std::string> gltf_mesh_names(const std::string& path) {
-  const tinygltf::Model model = load_model(path);
+  const tinygltf::Model model = load_gltf_model(path);
   const NodeGraph graph = node_graph(model, path);
   std::vector<std::string> names;
   for (const int node : graph.order) {
@@ -483,7 +517,7 @@ void append_node_mesh(const tinygltf::Model& model, const NodeGraph& graph, int 
 }  // namespace
 
 std::vector<std::string> gltf_skin_mesh_names(const std::string& path) {
-  const tinygltf::Model model = load_model(path);
+  const tinygltf::Model model = load_gltf_model(path);
   const NodeGraph graph = node_graph(model, path);
   std::vector<std::string> names;
   for (const int node : choose_nodes(model, graph, {}, path)) {
@@ -503,7 +537,7 @@ GltfAsset read_gltf(const std::string& path, const std::string& mesh_name) {
 GltfAsset read_gltf_meshes(const std::string& path, const std::vector<std::string>& mesh_names,
                            bool whole_skin) {
   auto shared = std::make_shared<GltfModel>();
-  shared->model = load_model(path);
+  shared->model = load_gltf_model(path);
   const tinygltf::Model& model = shared->model;
   const NodeGraph graph = node_graph(model, path);
   const std::vector<int> nodes = whole_skin || !mesh_names.empty()
@@ -516,6 +550,9 @@ GltfAsset read_gltf_meshes(const std::string& path, const std::vector<std::strin
   document.source_path = path;
   gltf.model = shared;
   gltf.mesh = model.nodes[static_cast<std::size_t>(nodes.front())].mesh;
+  gltf.node_name = model.nodes[static_cast<std::size_t>(nodes.front())].name.empty()
+                       ? fmt::format("node_{}", nodes.front())
+                       : model.nodes[static_cast<std::size_t>(nodes.front())].name;
   // Skinned meshes must share one skin; unskinned ones join with no weights.
   std::vector<std::string> names;
   int skin = -1;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/common/types.hpp"
+#include "core/io/gltf_animation.hpp"
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 
@@ -21,6 +22,15 @@ struct SkinJoint {
   int parent = -1;               ///< nearest ancestor that is a joint of the same skin, or -1
   Eigen::Matrix4d world;         ///< the joint node's world matrix in the rest pose
   Eigen::Matrix4d inverse_bind;  ///< as read (identity when the skin gives none)
+  /// The node's own transform at rest, relative to its parent node, as the translation,
+  /// rotation and scale an animation channel replaces (a node given by a matrix: its polar
+  /// decomposition, shear dropped).
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  /// From the parent joint's frame (the world for a joint without one) to the joint's
+  /// parent node's: the nodes between that are not joints of the skin, such as an armature.
+  Eigen::Matrix4d parent_offset = Eigen::Matrix4d::Identity();
 };
 
 /// A skin: joints, and per document position the weight of each joint.
@@ -45,6 +55,7 @@ struct GltfDocument {
   std::shared_ptr<const GltfModel> model;
   int mesh = -1;          ///< the first mesh read
   std::string mesh_name;  ///< the names of the meshes read, joined by '+'
+  std::string node_name;  ///< the node that places the first mesh read (`node_<i>` unnamed)
   std::vector<GltfPrimitive> primitives;
   bool has_tangents = false;        ///< some primitive had a TANGENT attribute
   std::optional<SkinBinding> skin;  ///< the skin of the node that places the mesh
@@ -113,7 +124,24 @@ struct GlbMesh {
   const GltfDocument* source = nullptr;  ///< as write_glb's source; null for an OBJ document
   MatrixX3d positions;                   ///< #P×3 of document, in the file's frame
   const SkinBinding* skin = nullptr;     ///< #J×#P weights of this document; null: unskinned
+  /// Morph targets: per target, position deltas (#P×3, document order, in the skin's bind
+  /// space), written with default weight 0.
+  std::vector<MatrixX3d> morph_targets{};
 };
+
+/// Adds morph targets and animations to a GLB, keeping everything it holds: per entry, the
+/// meshes of a document read from that very file (`layout`, whose primitives say where
+/// each vertex is) get one target per matrix of deltas (#P×3 over the document's
+/// positions), with default weight 0; clips are written as write_glb_meshes writes them.
+/// The file is replaced atomically.
+/// @throw InputError as read_gltf for a file that cannot be read; OutputError when it
+///        cannot be written or a mesh already has morph targets.
+struct GlbMorphTargets {
+  const GltfDocument* layout = nullptr;
+  std::vector<MatrixX3d> deltas;
+};
+void add_glb_animation(const std::string& path, const std::vector<GlbMorphTargets>& targets,
+                       const std::vector<AnimationClip>& clips);
 
 /// Writes several meshes as one binary glTF (GLB), an outfit's garments together: each
 /// becomes its own glTF mesh and scene node, in the order given, written as write_glb
@@ -127,10 +155,15 @@ struct GlbMesh {
 /// extensionsRequired are merged. The skinned meshes (a skin with weights) share one skin:
 /// its joints are written once as nodes, from the first skinned mesh, and every skinned
 /// mesh's node names it, with that mesh's own weights as its influences.
+/// `animations` are written after the meshes: each channel drives the written node of its
+/// name (a joint, or a mesh's node for morph weights); channels naming no written node are
+/// left out.
 /// @pre each mesh as write_glb's arguments; the skinned meshes' joints have the same world
-///      matrices and parents.
+///      matrices and parents; a weights channel has as many values per key as its mesh has
+///      morph targets.
 /// @throw OutputError naming the file when `meshes` is empty, a mesh has no document, two
 ///        skinned meshes' joints differ in count or names, or the file cannot be written.
-void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshes);
+void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshes,
+                      const std::vector<AnimationClip>& animations = {});
 
 }  // namespace gr

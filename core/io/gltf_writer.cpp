@@ -32,6 +32,8 @@ class GlbBuilder {
     model.asset.generator = "garment-retarget " GR_VERSION;
     model.buffers.emplace_back();
   }
+  /// Appends to a model that has one buffer (as a GLB written here has).
+  explicit GlbBuilder(tinygltf::Model existing) : model(std::move(existing)) {}
 
   int add_view(const void* data, std::size_t size, int target) {
     auto& bin = model.buffers[0].data;
@@ -474,6 +476,13 @@ int add_mesh(const GlbMesh& in, const std::string& name, int first_material, Glb
       out.attributes["JOINTS_0"] = joints;
       out.attributes["WEIGHTS_0"] = weights;
     }
+    for (const MatrixX3d& deltas : in.morph_targets) {
+      std::vector<float> dxyz;
+      for (const int position : p.position)
+        for (int c = 0; c < 3; ++c) dxyz.push_back(static_cast<float>(deltas(position, c)));
+      out.targets.push_back({{"POSITION", glb.add_floats(dxyz, TINYGLTF_TYPE_VEC3, 3,
+                                                         TINYGLTF_TARGET_ARRAY_BUFFER, true)}});
+    }
     std::vector<std::uint32_t> indices;
     for (const auto& t : p.triangles) indices.insert(indices.end(), t.begin(), t.end());
     const int view = glb.add_view(indices.data(), indices.size() * sizeof(std::uint32_t),
@@ -482,13 +491,58 @@ int add_mesh(const GlbMesh& in, const std::string& name, int first_material, Glb
                                    indices.size());
     mesh.primitives.push_back(out);
   }
+  mesh.weights.assign(in.morph_targets.size(), 0.0);
   glb.model.meshes.push_back(mesh);
   return static_cast<int>(glb.model.meshes.size()) - 1;
 }
 
+/// The clips' channels on written nodes (by name), each with its own sampler.
+void add_animations(const std::vector<AnimationClip>& clips, GlbBuilder& glb) {
+  std::map<std::string, int> node_of_name;
+  for (std::size_t n = 0; n < glb.model.nodes.size(); ++n)
+    node_of_name.emplace(glb.model.nodes[n].name, static_cast<int>(n));
+  for (const AnimationClip& clip : clips) {
+    tinygltf::Animation animation;
+    animation.name = clip.name;
+    for (const AnimationChannel& channel : clip.channels) {
+      const auto node = node_of_name.find(channel.node);
+      if (node == node_of_name.end()) continue;
+      std::vector<float> times(channel.times.begin(), channel.times.end());
+      std::vector<float> values;
+      for (Eigen::Index r = 0; r < channel.values.rows(); ++r)
+        for (Eigen::Index c = 0; c < channel.values.cols(); ++c)
+          values.push_back(static_cast<float>(channel.values(r, c)));
+      const bool weights = channel.path == ChannelPath::kWeights;
+      const auto components = static_cast<int>(channel.values.cols());
+      tinygltf::AnimationSampler sampler;
+      sampler.input = glb.add_floats(times, TINYGLTF_TYPE_SCALAR, 1, 0, true);
+      sampler.output = glb.add_floats(values,
+                                      weights           ? TINYGLTF_TYPE_SCALAR
+                                      : components == 4 ? TINYGLTF_TYPE_VEC4
+                                                        : TINYGLTF_TYPE_VEC3,
+                                      weights ? 1 : components, 0, false);
+      sampler.interpolation = channel.interpolation == KeyInterpolation::kStep ? "STEP"
+                              : channel.interpolation == KeyInterpolation::kCubicSpline
+                                  ? "CUBICSPLINE"
+                                  : "LINEAR";
+      tinygltf::AnimationChannel out;
+      out.sampler = static_cast<int>(animation.samplers.size());
+      out.target_node = node->second;
+      out.target_path = channel.path == ChannelPath::kTranslation ? "translation"
+                        : channel.path == ChannelPath::kRotation  ? "rotation"
+                        : channel.path == ChannelPath::kScale     ? "scale"
+                                                                  : "weights";
+      animation.samplers.push_back(sampler);
+      animation.channels.push_back(out);
+    }
+    if (!animation.channels.empty()) glb.model.animations.push_back(animation);
+  }
+}
+
 }  // namespace
 
-void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshes) {
+void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshes,
+                      const std::vector<AnimationClip>& animations) {
   if (meshes.empty()) throw OutputError(fmt::format("{}: no mesh to write", path));
   std::vector<std::string> names;
   const SkinBinding* skin = nullptr;  // the first skinned mesh's, written for all
@@ -529,7 +583,42 @@ void write_glb_meshes(const std::string& path, const std::vector<GlbMesh>& meshe
   if (skin) add_skin(*skin, glb, scene.nodes);
   glb.model.scenes.push_back(scene);
   glb.model.defaultScene = 0;
+  add_animations(animations, glb);
 
+  write_file_atomically(path, [&](std::ostream& out) {
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&glb.model, out, false, true))
+      throw OutputError(fmt::format("{}: the glTF writer failed", path));
+  });
+}
+
+void add_glb_animation(const std::string& path, const std::vector<GlbMorphTargets>& targets,
+                       const std::vector<AnimationClip>& clips) {
+  tinygltf::Model model = load_gltf_model(path);
+  if (model.buffers.size() != 1)
+    throw OutputError(fmt::format("{}: holds {} buffers; animations are added to a GLB with one",
+                                  path, model.buffers.size()));
+  GlbBuilder glb(std::move(model));
+  for (const GlbMorphTargets& entry : targets) {
+    if (entry.deltas.empty()) continue;
+    for (const GltfPrimitive& part : entry.layout->primitives) {
+      tinygltf::Mesh& mesh = glb.model.meshes.at(static_cast<std::size_t>(part.mesh));
+      tinygltf::Primitive& primitive = mesh.primitives.at(static_cast<std::size_t>(part.source));
+      if (!primitive.targets.empty())
+        throw OutputError(fmt::format("{}: mesh '{}' has morph targets already", path, mesh.name));
+      for (const MatrixX3d& deltas : entry.deltas) {
+        std::vector<float> xyz;
+        for (int v = 0; v < part.position_count; ++v)
+          for (int c = 0; c < 3; ++c)
+            xyz.push_back(static_cast<float>(deltas(part.first_position + v, c)));
+        primitive.targets.push_back({{"POSITION", glb.add_floats(xyz, TINYGLTF_TYPE_VEC3, 3,
+                                                                 TINYGLTF_TARGET_ARRAY_BUFFER,
+                                                                 true)}});
+      }
+      mesh.weights.assign(entry.deltas.size(), 0.0);
+    }
+  }
+  add_animations(clips, glb);
   write_file_atomically(path, [&](std::ostream& out) {
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&glb.model, out, false, true))

@@ -158,6 +158,13 @@ SkinBinding skin_of_skeleton(const Skeleton& skeleton, const Eigen::MatrixXd& we
         skeleton.joints.row(static_cast<Eigen::Index>(j)).transpose();
     joint.inverse_bind = joint.world.inverse();
   }
+  for (SkinJoint& joint : skin.joints)
+    joint.translation =
+        joint.world.topRightCorner<3, 1>() -
+        (joint.parent >= 0
+             ? Eigen::Vector3d(
+                   skin.joints[static_cast<std::size_t>(joint.parent)].world.topRightCorner<3, 1>())
+             : Eigen::Vector3d::Zero());
   skin.weights = weights;
   return skin;
 }

@@ -14,6 +14,14 @@ struct FacePair {
   int second;
 };
 
+inline bool operator==(const FacePair& a, const FacePair& b) {
+  return a.first == b.first && a.second == b.second;
+}
+/// By first face, then second.
+inline bool operator<(const FacePair& a, const FacePair& b) {
+  return a.first != b.first ? a.first < b.first : a.second < b.second;
+}
+
 /// Intersecting face pairs: how many, and the first ones found (sorted).
 struct FacePairList {
   std::size_t count = 0;

@@ -1,0 +1,135 @@
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "scenes/synthetic/bending_arm.hpp"
+
+namespace gr {
+namespace {
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+/// The arm scene written into a fresh folder.
+std::filesystem::path arm_scene(const std::string& name) {
+  const auto dir = test::fresh_temp_dir(name);
+  write_bending_arm_scene(make_bending_arm_scene(90.0), dir.string());
+  return dir;
+}
+
+TEST_CASE("validate --animation finds the frames where a skinned sleeve crosses its bending arm", "[validate][animation]") {
+  const auto dir = arm_scene("validate_animation_bend");
+  const test::CliRun run = test::run_cli(
+      {"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "bend", "--report",
+       (dir / "report.json").string()},
+      "validate_animation_bend");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 1);
+  CHECK_THAT(run.out, Catch::Contains("animation 'bend': 31 frames at 30 fps"));
+  const nlohmann::json report = read_json(dir / "report.json");
+  // The sleeve is certified as written: only the played frames cross.
+  CHECK(report["totals"]["garment_avatar_intersections"] == 0);
+  const nlohmann::json& clip = report["animations"].at(0);
+  CHECK(clip["clip"] == "bend");
+  CHECK(clip["translations"] == "all");
+  CHECK(clip["frame_count"] == 31);
+  CHECK(clip["avatar_driven_joints"] == 1);
+  const nlohmann::json& frames = clip["frames"];
+  CHECK(frames.at(0)["avatar_pairs"] == 0);
+  CHECK(frames.at(0)["self_pairs"] == 0);
+  CHECK(frames.at(30)["avatar_pairs"].get<int>() > 0);
+  const int first = clip["first_crossing_frame"]["index"];
+  CHECK(first > 0);
+  CHECK(clip["crossing_frames"].get<int>() == 31 - first);
+  CHECK(clip["worst_frame"]["pairs"].get<int>() >= frames.at(first)["avatar_pairs"].get<int>());
+}
+
+TEST_CASE("a clip from another file drives the joints of the same names", "[validate][animation]") {
+  const auto dir = arm_scene("validate_animation_other_file");
+  const auto report_of = [&](const std::string& spec, const std::string& name) {
+    const test::CliRun run = test::run_cli(
+        {"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+         (dir / "arm.glb").string(), "--animation", spec, "--report",
+         (dir / (name + ".json")).string()},
+        name);
+    INFO(run.out << run.err);
+    CHECK(run.exit_code == 1);
+    return read_json(dir / (name + ".json"))["animations"].at(0);
+  };
+  const nlohmann::json own = report_of("bend", "own");
+  const nlohmann::json other = report_of((dir / "clip.glb").string() + "#bend", "other");
+  CHECK(other["translations"] == "roots");
+  CHECK(other["file"] == (dir / "clip.glb").string());
+  CHECK(other["crossing_frames"] == own["crossing_frames"]);
+  CHECK(other["frames"] == own["frames"]);
+  // A whole file's clips, by the file alone.
+  CHECK(report_of((dir / "clip.glb").string(), "whole_file")["frames"] == own["frames"]);
+}
+
+TEST_CASE("validate --animation refuses a clip it cannot find and an unskinned garment", "[validate][animation]") {
+  const auto dir = arm_scene("validate_animation_refusals");
+  const test::CliRun unknown = test::run_cli(
+      {"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "wave"},
+      "validate_animation_unknown");
+  CHECK(unknown.exit_code == 2);
+  CHECK_THAT(unknown.err, Catch::Contains("no animation named 'wave'") && Catch::Contains("'bend'"));
+  CHECK(test::lines_of(unknown.err).size() == 1);
+
+  std::ofstream(dir / "sleeve.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const test::CliRun unskinned = test::run_cli(
+      {"validate", "--garment", (dir / "sleeve.obj").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "bend"},
+      "validate_animation_unskinned");
+  CHECK(unskinned.exit_code == 2);
+  CHECK_THAT(unskinned.err, Catch::Contains("sleeve.obj") && Catch::Contains("skin"));
+}
+
+TEST_CASE("retarget --animation writes a sleeve certified in every frame, and validate agrees", "[retarget][animation]") {
+  const auto dir = arm_scene("retarget_animation_bend");
+  const auto out = dir / "out";
+  const test::CliRun run = test::run_cli(
+      {"retarget", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "bend", "--out", out.string(), "--quiet"},
+      "retarget_animation_bend");
+  INFO(run.out << run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(run.out, Catch::Contains("animation 'bend': 31 frames at 30 fps, 0 crossing"));
+  const nlohmann::json report = read_json(out / "report.json");
+  const nlohmann::json& clip = report["animation"]["clips"].at(0);
+  CHECK(report["animation"]["certified"] == true);
+  CHECK(clip["written"]["crossing_frames"] == 0);
+  CHECK(clip["corrected_frames"].get<int>() ==
+        clip["skinning_alone"]["crossing_frames"].get<int>());
+  CHECK(clip["seconds_per_frame"].get<double>() > 0.0);
+
+  // The written file played on its own, by the validator, with the clip of the arm's file.
+  const test::CliRun check = test::run_cli(
+      {"validate", "--garment", (out / "garment.glb").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "bend"},
+      "retarget_animation_validate");
+  INFO(check.out << check.err);
+  CHECK(check.exit_code == 0);
+  CHECK_THAT(check.out, Catch::Contains("31 frames at 30 fps, 0 crossing"));
+}
+
+TEST_CASE("retarget --animation is refused up front without a skinned output", "[retarget][animation]") {
+  const auto dir = arm_scene("retarget_animation_obj");
+  const test::CliRun run = test::run_cli(
+      {"retarget", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "bend", "--format", "obj", "--out",
+       (dir / "out").string(), "--quiet"},
+      "retarget_animation_obj");
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Catch::Contains("--animation needs"));
+  CHECK_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+}  // namespace
+}  // namespace gr

@@ -1,0 +1,60 @@
+#include <filesystem>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "core/io/gltf_document.hpp"
+#include "retarget/stages/animate_stage.hpp"
+#include "scenes/synthetic/bending_arm.hpp"
+#include "test_support.hpp"
+
+namespace gr {
+namespace {
+
+TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected frames do not", "[animation]") {
+  const auto dir = test::fresh_temp_dir("animate_bending_elbow");
+  write_bending_arm_scene(make_bending_arm_scene(90.0), dir.string());
+  const std::string sleeve = (dir / "sleeve.glb").string();
+  const std::string arm = (dir / "arm.glb").string();
+  const MatrixX3d rest = read_gltf(sleeve).document.positions;
+
+  Progress progress(true);
+  const std::vector<std::string> files{sleeve};
+  const std::vector<std::string> meshes{""};
+  const std::vector<std::string> avatar_meshes;
+  AnimateOptions options;
+  options.clips = {"bend"};
+  const AnimateOutput output = run_animate({files, meshes, arm, avatar_meshes}, options, progress);
+  REQUIRE(output.clips.size() == 1);
+  const AnimationReport& clip = output.clips.front();
+  INFO(clip_summary(clip.skinned) << "\n" << clip_summary(clip.written));
+  CHECK(clip.skinned.frames.size() == 31);
+  CHECK(clip.skinned.crossing_frames() > 10);
+  CHECK(clip.corrected_frames == static_cast<int>(clip.skinned.crossing_frames()));
+  CHECK(clip.corrections_failed == 0);
+  // Every frame of the file as written, played with its morph weights, is free.
+  CHECK(clip.written.crossing_frames() == 0);
+  CHECK(output.certified());
+
+  // The rest pose is what it was, and the file carries the clip and one target a frame.
+  const GltfAsset written = read_gltf(sleeve);
+  CHECK(written.document.positions == rest);
+  const std::vector<AnimationClip> clips = read_gltf_animations(sleeve);
+  REQUIRE(clips.size() == 1);
+  CHECK(clips.front().name == "bend");
+  bool weights = false;
+  for (const AnimationChannel& channel : clips.front().channels)
+    if (channel.path == ChannelPath::kWeights) {
+      weights = true;
+      CHECK(channel.values.cols() == clip.corrected_frames);
+      CHECK(channel.times.size() == 31);
+    }
+  CHECK(weights);
+  const std::vector<MeshMorphTargets> targets =
+      read_morph_targets(written.gltf, sleeve, written.document.positions.rows());
+  REQUIRE(targets.size() == 1);
+  CHECK(static_cast<int>(targets.front().deltas.size()) == clip.corrected_frames);
+}
+
+}  // namespace
+}  // namespace gr
