@@ -176,6 +176,7 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"certified", r.certified()},
       {"warnings", r.warnings},
   };
+  report["pose"] = to_json(r.pose);
   if (r.animation) report["animation"] = to_json(*r.animation);
   report["skin"] = {{"written", r.skin.written},
                     {"joints", r.skin.joints},

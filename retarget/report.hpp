@@ -7,7 +7,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "retarget/stages/animate_stage.hpp"
 #include "core/solver/guide_path.hpp"
 #include "garment/fit/ease.hpp"
 #include "garment/fit/fit_error.hpp"
@@ -15,8 +14,10 @@
 #include "garment/repairs/non_manifold_edges.hpp"
 #include "garment/repairs/pierced_faces.hpp"
 #include "retarget/parameters.hpp"
+#include "retarget/scene/garment_pose.hpp"
 #include "retarget/scene/inferred_inputs.hpp"
 #include "retarget/scene/shrink_avatar.hpp"
+#include "retarget/stages/animate_stage.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 #include "validate/measure/shape_change.hpp"
 
@@ -197,6 +198,7 @@ struct RetargetReport {
   std::string previous_result;
 
   NormalizeReport normalize;
+  PoseReport pose;  ///< whether the garment was turned into the target's pose first
   RepairsReport repairs;
   InferenceReport inferred;  ///< the skin weights and no-fit list the run inferred, if any
   EaseReport ease;
@@ -206,7 +208,7 @@ struct RetargetReport {
   FitReport fit;
   SkinTransferReport skin;  ///< written with a GLB garment
   CertifyReport certify;
-  std::optional<OutfitReport> outfit;  ///< set for several garments
+  std::optional<OutfitReport> outfit;      ///< set for several garments
   std::optional<AnimateOutput> animation;  ///< set when clips were played (--animation)
 
   std::vector<std::string> warnings;

@@ -192,7 +192,12 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Progress& progress = run.progress();
   const RetargetParameters& parameters = report.parameters.solver;
 
-  ReadOutput read = run_read({options.inputs}, {options.limits, options.shrink_mode}, progress);
+  ReadOutput read = run_read(
+      {options.inputs}, {options.limits, options.shrink_mode, options.pose, options.pose_skinning},
+      progress);
+  if (options.write_posed && read.pose.posed)
+    write_obj((run.out() / "posed-garment.obj").string(), read.scene.garment_document,
+              read.scene.garment_document.positions);
   Scene& scene = read.scene;
   const std::vector<int> given_order = resolve_layer_order(scene, options.layer_order);
   mark_skirts(scene, options.skirt, options.skirt_layers);

@@ -69,6 +69,11 @@ struct RetargetOptions {
   /// morph targets, and every frame certified. Needs a skinned GLB avatar and output.
   std::vector<std::string> animations;
   double fps = 30.0;  ///< frames sampled per second of a clip
+  /// The pose the solve starts the garment in: the target's (turned by its own skin, where
+  /// garment and avatar both have a glTF skin) or the one its file shows.
+  PoseMode pose = PoseMode::kTarget;
+  SkinningMethod pose_skinning = SkinningMethod::kLinearBlend;
+  bool write_posed = false;  ///< also write the garment as posed (posed-garment.obj)
 };
 
 /// How a retarget run ended: kCertified, kNotCertified, kNoValidShrink, kSolverFailure or

@@ -122,16 +122,23 @@ void fields(RetargetOptions& o, V& v) {
   v("open_pierced_faces", o.open_pierced_faces);
   v("animations", o.animations);
   v("fps", o.fps);
+  v("pose", o.pose);
+  v("pose_skinning", o.pose_skinning);
+  v("write_posed", o.write_posed);
 }
 
 const char* name_of(BindingChoice choice) { return to_string(choice); }
 const char* name_of(ShrinkMode mode) { return to_string(mode); }
 const char* name_of(Quality quality) { return to_string(quality); }
 const char* name_of(FitMode mode) { return to_string(mode); }
+const char* name_of(PoseMode mode) { return to_string(mode); }
+const char* name_of(SkinningMethod method) { return to_string(method); }
 void parse_name(const std::string& name, BindingChoice& out) { out = parse_binding_choice(name); }
 void parse_name(const std::string& name, ShrinkMode& out) { out = parse_shrink_mode(name); }
 void parse_name(const std::string& name, Quality& out) { out = parse_quality(name); }
 void parse_name(const std::string& name, FitMode& out) { out = parse_fit_mode(name); }
+void parse_name(const std::string& name, PoseMode& out) { out = parse_pose_mode(name); }
+void parse_name(const std::string& name, SkinningMethod& out) { out = parse_skinning_method(name); }
 
 // Writing.
 

@@ -10,6 +10,7 @@ void record_inputs(RetargetReport& report, const ReadOutput& read, const Prepare
   report.estimated_memory_mb = read.estimated_memory_mb;
   report.shrink.mode = read.shrink_mode;
   report.seconds.read = read.seconds;
+  report.pose = read.pose;
   report.normalize = prepare.report;
   report.repairs = prepare.repairs;
   double& min_separation = report.parameters.solver.ccd.min_separation;

@@ -136,8 +136,8 @@ ValidateResult run_validate(const ValidateOptions& given) {
     frames_cross = frames_cross || clip.crossing_frames() > 0;
   }
   result.status = !validation.result.certified() || frames_cross ? Outcome::kNotCertified
-                  : result.warnings.empty()      ? Outcome::kCertified
-                                                 : Outcome::kShapeChanged;
+                  : result.warnings.empty()                      ? Outcome::kCertified
+                                                                 : Outcome::kShapeChanged;
   return result;
 }
 

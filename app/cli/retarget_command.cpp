@@ -113,6 +113,25 @@ CLI::App* add_retarget_options(CLI::App& root, RetargetBinding& binding) {
   add_inference_options(*cmd, options->inputs, options->inference, &binding.garments);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option_function<std::string>(
+         "--pose",
+         [options](const std::string& choice) { options->pose = parse_pose_mode(choice); },
+         "The pose the solve starts the garment in: target (turned by its own skin into the "
+         "avatar's pose, where garment and avatar both have a glTF skin; report.json pose) or "
+         "as-given")
+      ->check(CLI::IsMember({"target", "as-given"}))
+      ->default_str("target");
+  cmd->add_option_function<std::string>(
+         "--pose-skinning",
+         [options](const std::string& choice) {
+           options->pose_skinning = parse_skinning_method(choice);
+         },
+         "How --pose target blends the joints' turns at a vertex")
+      ->check(CLI::IsMember({"linear-blend", "dual-quaternion"}))
+      ->default_str("linear-blend");
+  cmd->add_flag("--write-posed", options->write_posed,
+                "Also write the garment as the pose step left it, in its own frame "
+                "(OUT/posed-garment.obj)");
   cmd->add_option("--animation", options->animations,
                   "Play the written garment with the avatar through a glTF animation (a clip "
                   "of the avatar's file by name, 'all', a glTF file or FILE#NAME; repeatable): "

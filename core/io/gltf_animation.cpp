@@ -14,13 +14,14 @@ namespace gr {
 
 namespace {
 
-ChannelPath channel_path(const std::string& name, const std::string& path, const std::string& clip) {
+ChannelPath channel_path(const std::string& name, const std::string& path,
+                         const std::string& clip) {
   if (name == "translation") return ChannelPath::kTranslation;
   if (name == "rotation") return ChannelPath::kRotation;
   if (name == "scale") return ChannelPath::kScale;
   if (name == "weights") return ChannelPath::kWeights;
-  throw InputError(path, 0, fmt::format("animation '{}' drives '{}', which is not a node property",
-                                        clip, name));
+  throw InputError(
+      path, 0, fmt::format("animation '{}' drives '{}', which is not a node property", clip, name));
 }
 
 KeyInterpolation key_interpolation(const std::string& name) {
@@ -52,9 +53,9 @@ AnimationChannel read_channel(const tinygltf::Model& model, const tinygltf::Anim
                               const tinygltf::AnimationChannel& source, const std::string& file,
                               const std::string& clip) {
   if (source.sampler < 0 || static_cast<std::size_t>(source.sampler) >= animation.samplers.size())
-    throw InputError(file, 0,
-                     fmt::format("animation '{}' has a channel with no sampler {}", clip,
-                                 source.sampler));
+    throw InputError(
+        file, 0,
+        fmt::format("animation '{}' has a channel with no sampler {}", clip, source.sampler));
   if (source.target_node < 0 || static_cast<std::size_t>(source.target_node) >= model.nodes.size())
     throw InputError(file, 0,
                      fmt::format("animation '{}' has a channel on node {}, which does not exist",
@@ -78,8 +79,7 @@ AnimationChannel read_channel(const tinygltf::Model& model, const tinygltf::Anim
                                    "(key {})",
                                    what, k));
   const int components = component_count(model, node, channel.path, file, clip);
-  const std::size_t rows =
-      keys * (channel.interpolation == KeyInterpolation::kCubicSpline ? 3 : 1);
+  const std::size_t rows = keys * (channel.interpolation == KeyInterpolation::kCubicSpline ? 3 : 1);
   const std::size_t count = accessor_count(model, sampler.output, file);
   const int type = channel.path == ChannelPath::kWeights ? TINYGLTF_TYPE_SCALAR
                    : components == 4                     ? TINYGLTF_TYPE_VEC4
@@ -87,15 +87,16 @@ AnimationChannel read_channel(const tinygltf::Model& model, const tinygltf::Anim
   const std::size_t elements =
       channel.path == ChannelPath::kWeights ? rows * static_cast<std::size_t>(components) : rows;
   if (count != elements)
-    throw InputError(file, 0,
-                     fmt::format("{}: {} values for {} keyframes (expected {})", what, count, keys,
-                                 elements));
+    throw InputError(
+        file, 0,
+        fmt::format("{}: {} values for {} keyframes (expected {})", what, count, keys, elements));
   const std::vector<double> values =
       read_accessor(model, sampler.output, type, elements, file, (what + " values").c_str());
   channel.values.resize(static_cast<Eigen::Index>(rows), components);
   for (std::size_t r = 0; r < rows; ++r)
     for (int c = 0; c < components; ++c) {
-      const double value = values[r * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)];
+      const double value =
+          values[r * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)];
       if (!std::isfinite(value))
         throw InputError(file, 0, fmt::format("{}: value {} is not finite", what, r));
       channel.values(static_cast<Eigen::Index>(r), c) = value;
@@ -142,17 +143,16 @@ std::vector<MeshMorphTargets> read_morph_targets(const GltfDocument& gltf, const
   std::vector<MeshMorphTargets> result;
   std::vector<int> mesh_of_entry;
   for (const GltfPrimitive& part : gltf.primitives) {
-    const tinygltf::Primitive& primitive =
-        model.meshes[static_cast<std::size_t>(part.mesh)].primitives[static_cast<std::size_t>(
-            part.source)];
+    const tinygltf::Primitive& primitive = model.meshes[static_cast<std::size_t>(part.mesh)]
+                                               .primitives[static_cast<std::size_t>(part.source)];
     if (primitive.targets.empty()) continue;
     auto entry = std::find(mesh_of_entry.begin(), mesh_of_entry.end(), part.mesh);
     if (entry == mesh_of_entry.end()) {
       MeshMorphTargets targets;
       for (std::size_t n = 0; n < model.nodes.size() && targets.node.empty(); ++n)
         if (model.nodes[n].mesh == part.mesh)
-          targets.node = model.nodes[n].name.empty() ? fmt::format("node_{}", n)
-                                                     : model.nodes[n].name;
+          targets.node =
+              model.nodes[n].name.empty() ? fmt::format("node_{}", n) : model.nodes[n].name;
       result.push_back(std::move(targets));
       mesh_of_entry.push_back(part.mesh);
       entry = mesh_of_entry.end() - 1;
@@ -163,9 +163,9 @@ std::vector<MeshMorphTargets> read_morph_targets(const GltfDocument& gltf, const
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
       const auto it = primitive.targets[t].find("POSITION");
       if (it == primitive.targets[t].end()) continue;
-      const std::vector<double> xyz =
-          read_accessor(model, it->second, TINYGLTF_TYPE_VEC3,
-                        static_cast<std::size_t>(part.position_count), path, "morph target POSITION");
+      const std::vector<double> xyz = read_accessor(model, it->second, TINYGLTF_TYPE_VEC3,
+                                                    static_cast<std::size_t>(part.position_count),
+                                                    path, "morph target POSITION");
       for (int v = 0; v < part.position_count; ++v)
         for (int c = 0; c < 3; ++c)
           targets.deltas[t](part.first_position + v, c) =
@@ -185,19 +185,19 @@ Eigen::VectorXd sample_channel(const AnimationChannel& channel, double time) {
   if (time <= times.front()) return finish(channel.values.row(value_row(channel, 0)).transpose());
   if (time >= times.back())
     return finish(channel.values.row(value_row(channel, times.size() - 1)).transpose());
-  const auto after = static_cast<std::size_t>(
-      std::upper_bound(times.begin(), times.end(), time) - times.begin());
+  const auto after =
+      static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), time) - times.begin());
   const std::size_t before = after - 1;
   const Eigen::VectorXd v0 = channel.values.row(value_row(channel, before)).transpose();
   const Eigen::VectorXd v1 = channel.values.row(value_row(channel, after)).transpose();
   const double span = times[after] - times[before];
   const double s = (time - times[before]) / span;
   switch (channel.interpolation) {
-    case KeyInterpolation::kStep:
-      return finish(v0);
+    case KeyInterpolation::kStep: return finish(v0);
     case KeyInterpolation::kLinear:
       if (rotation) {
-        const Eigen::Quaterniond q = quaternion(v0).normalized().slerp(s, quaternion(v1).normalized());
+        const Eigen::Quaterniond q =
+            quaternion(v0).normalized().slerp(s, quaternion(v1).normalized());
         return Eigen::Vector4d(q.x(), q.y(), q.z(), q.w());
       }
       return (1.0 - s) * v0 + s * v1;

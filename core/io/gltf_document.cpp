@@ -292,8 +292,9 @@ SkinBinding read_skin(const tinygltf::Model& model, int skin_index, const NodeGr
     if (const int parent_node = graph.parent[node]; parent_node >= 0) {
       joint.parent_offset = graph.world[static_cast<std::size_t>(parent_node)];
       if (joint.parent >= 0)
-        joint.parent_offset = graph.world[static_cast<std::size_t>(
-                                               skin.joints[static_cast<std::size_t>(joint.parent)])]
+        joint.parent_offset = graph
+                                  .world[static_cast<std::size_t>(
+                                      skin.joints[static_cast<std::size_t>(joint.parent)])]
                                   .inverse() *
                               joint.parent_offset;
     }

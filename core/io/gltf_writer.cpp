@@ -611,9 +611,9 @@ void add_glb_animation(const std::string& path, const std::vector<GlbMorphTarget
         for (int v = 0; v < part.position_count; ++v)
           for (int c = 0; c < 3; ++c)
             xyz.push_back(static_cast<float>(deltas(part.first_position + v, c)));
-        primitive.targets.push_back({{"POSITION", glb.add_floats(xyz, TINYGLTF_TYPE_VEC3, 3,
-                                                                 TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                                 true)}});
+        primitive.targets.push_back(
+            {{"POSITION",
+              glb.add_floats(xyz, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true)}});
       }
       mesh.weights.assign(entry.deltas.size(), 0.0);
     }

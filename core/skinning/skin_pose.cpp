@@ -47,8 +47,8 @@ ClipBinding bind_clip(const SkinBinding& skin, const AnimationClip& clip,
     if (channel.path == ChannelPath::kWeights) continue;
     const auto found = joint_of_name.find(channel.node);
     if (found == joint_of_name.end()) {
-      if (std::find(binding.unmatched_nodes.begin(), binding.unmatched_nodes.end(),
-                    channel.node) == binding.unmatched_nodes.end())
+      if (std::find(binding.unmatched_nodes.begin(), binding.unmatched_nodes.end(), channel.node) ==
+          binding.unmatched_nodes.end())
         binding.unmatched_nodes.push_back(channel.node);
       continue;
     }
@@ -118,8 +118,9 @@ std::vector<Eigen::Matrix4d> joint_worlds(const SkinBinding& skin, const Skeleto
       chain.push_back(static_cast<std::size_t>(k));
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
       const int parent = skin.joints[*it].parent;
-      world[*it] = parent >= 0 ? Eigen::Matrix4d(world[static_cast<std::size_t>(parent)] * local[*it])
-                               : local[*it];
+      world[*it] = parent >= 0
+                       ? Eigen::Matrix4d(world[static_cast<std::size_t>(parent)] * local[*it])
+                       : local[*it];
       done[*it] = true;
     }
   }
@@ -162,7 +163,8 @@ SkinnedMesh prepare_skinned_mesh(const SkinBinding& skin,
   return mesh;
 }
 
-MatrixX3d pose_skinned_mesh(const SkinBinding& skin, const SkinnedMesh& mesh, const std::vector<Eigen::Matrix4d>& worlds,
+MatrixX3d pose_skinned_mesh(const SkinBinding& skin, const SkinnedMesh& mesh,
+                            const std::vector<Eigen::Matrix4d>& worlds,
                             const MatrixX3d* bind_offsets) {
   MatrixX3d posed = mesh.bind_positions;
   if (bind_offsets) posed += *bind_offsets;

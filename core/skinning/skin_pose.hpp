@@ -84,10 +84,11 @@ struct SkinnedMesh {
 SkinnedMesh prepare_skinned_mesh(const SkinBinding& skin,
                                  const Eigen::Ref<const MatrixX3d>& rest_positions);
 
-/// Linear blend skinning of `mesh` (prepared with `skin`): each vertex through sum_j w_j world_j inverse_bind_j with the
-/// given joint worlds (posed_joint_worlds), as engines play a skin; `bind_offsets` (#P×3,
-/// optional) moves the bind positions first, as morph targets do.
-MatrixX3d pose_skinned_mesh(const SkinBinding& skin, const SkinnedMesh& mesh, const std::vector<Eigen::Matrix4d>& worlds,
+/// Linear blend skinning of `mesh` (prepared with `skin`): each vertex through sum_j w_j world_j
+/// inverse_bind_j with the given joint worlds (posed_joint_worlds), as engines play a skin;
+/// `bind_offsets` (#P×3, optional) moves the bind positions first, as morph targets do.
+MatrixX3d pose_skinned_mesh(const SkinBinding& skin, const SkinnedMesh& mesh,
+                            const std::vector<Eigen::Matrix4d>& worlds,
                             const MatrixX3d* bind_offsets = nullptr);
 
 /// Per vertex, the linear part of its blend matrix with the given joint worlds: what turns a

@@ -55,8 +55,7 @@ void read_part(const std::string& path, const std::vector<std::string>& meshes, 
   } catch (const std::invalid_argument& error) {
     throw InputError(path, 0, error.what());
   }
-  part.morphs =
-      read_morph_targets(part.asset.gltf, path, part.asset.document.positions.rows());
+  part.morphs = read_morph_targets(part.asset.gltf, path, part.asset.document.positions.rows());
   if (!part.morphs.empty()) part.own_clips = read_gltf_animations(path);
 }
 
@@ -88,9 +87,9 @@ TriangleMesh posed(const AnimatedScene::Part& part, const std::vector<Eigen::Mat
                    const std::string& clip, double time) {
   MatrixX3d offsets;
   const bool morphed = morph_offsets(part, clip, time, offsets);
-  return {pose_skinned_mesh(*part.asset.gltf.skin, part.skinned, worlds,
-                            morphed ? &offsets : nullptr),
-          part.mesh.faces};
+  return {
+      pose_skinned_mesh(*part.asset.gltf.skin, part.skinned, worlds, morphed ? &offsets : nullptr),
+      part.mesh.faces};
 }
 
 }  // namespace
@@ -102,10 +101,9 @@ AnimatedScene read_animated_scene(const std::vector<std::string>& garment_paths,
   AnimatedScene scene;
   scene.garments.resize(garment_paths.size());
   for (std::size_t g = 0; g < garment_paths.size(); ++g) {
-    const std::vector<std::string> mesh =
-        g < garment_meshes.size() && !garment_meshes[g].empty()
-            ? std::vector<std::string>{garment_meshes[g]}
-            : std::vector<std::string>{};
+    const std::vector<std::string> mesh = g < garment_meshes.size() && !garment_meshes[g].empty()
+                                              ? std::vector<std::string>{garment_meshes[g]}
+                                              : std::vector<std::string>{};
     read_part(garment_paths[g], mesh, false, "garment", scene.garments[g]);
   }
   read_part(avatar_path, avatar_meshes, true, "avatar", scene.avatar);
@@ -222,9 +220,9 @@ nlohmann::ordered_json to_json(const ClipFindings& findings) {
 }
 
 std::string clip_summary(const ClipFindings& findings) {
-  std::string line = fmt::format("animation '{}': {} frames at {:g} fps, {} crossing",
-                                 findings.clip, findings.frames.size(), findings.fps,
-                                 findings.crossing_frames());
+  std::string line =
+      fmt::format("animation '{}': {} frames at {:g} fps, {} crossing", findings.clip,
+                  findings.frames.size(), findings.fps, findings.crossing_frames());
   if (const auto first = findings.first_crossing()) {
     const auto worst = *findings.worst_frame();
     line += fmt::format(" (first: frame {} at {:.3f} s; worst: frame {} at {:.3f} s, {} pairs)",

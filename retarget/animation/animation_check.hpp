@@ -16,7 +16,7 @@ namespace gr {
 struct AnimatedScene {
   struct Part {
     std::string path;
-    GltfAsset asset;  ///< as read: rest positions, skin
+    GltfAsset asset;    ///< as read: rest positions, skin
     TriangleMesh mesh;  ///< faces as the validator reads them; vertices at rest
     SkinnedMesh skinned;
     std::vector<MeshMorphTargets> morphs;

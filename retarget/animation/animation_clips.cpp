@@ -49,8 +49,8 @@ std::vector<ChosenClip> choose_clips(const std::vector<std::string>& specs,
   for (const std::string& spec : specs) {
     std::string file = avatar_path;
     std::string name = spec;
-    if (const auto hash = spec.rfind('#'); hash != std::string::npos && hash > 0 &&
-                                           is_rig_file(spec.substr(0, hash))) {
+    if (const auto hash = spec.rfind('#');
+        hash != std::string::npos && hash > 0 && is_rig_file(spec.substr(0, hash))) {
       file = spec.substr(0, hash);
       name = spec.substr(hash + 1);
     } else if (is_rig_file(spec)) {
@@ -58,8 +58,8 @@ std::vector<ChosenClip> choose_clips(const std::vector<std::string>& specs,
       name = "all";
     }
     if (!is_rig_file(file))
-      throw InputError(file, 0,
-                       fmt::format("--animation '{}' needs a glTF avatar or a glTF clip file", spec));
+      throw InputError(
+          file, 0, fmt::format("--animation '{}' needs a glTF avatar or a glTF clip file", spec));
     const std::vector<AnimationClip>& clips = clips_in(file);
     if (name == "all") {
       for (const AnimationClip& clip : clips) add(clip);

@@ -35,9 +35,7 @@ class StopOnly final : public Interrupter {
 struct UnitFrame {
   double scale = 1.0;
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
-  MatrixX3d to_solver(const MatrixX3d& p) const {
-    return (p.rowwise() - centre) * scale;
-  }
+  MatrixX3d to_solver(const MatrixX3d& p) const { return (p.rowwise() - centre) * scale; }
   MatrixX3d to_file(const MatrixX3d& p) const { return (p / scale).rowwise() + centre; }
 };
 
@@ -147,9 +145,9 @@ struct PosedScene {
 PosedScene pose_scene(const AnimatedScene& scene, const ScenePose& pose) {
   PosedScene posed;
   const SkinBinding& avatar_skin = *scene.avatar.asset.gltf.skin;
-  posed.avatar = {pose_skinned_mesh(avatar_skin, scene.avatar.skinned,
-                                    joint_worlds(avatar_skin, pose.avatar)),
-                  scene.avatar.mesh.faces};
+  posed.avatar = {
+      pose_skinned_mesh(avatar_skin, scene.avatar.skinned, joint_worlds(avatar_skin, pose.avatar)),
+      scene.avatar.mesh.faces};
   for (std::size_t g = 0; g < scene.garments.size(); ++g) {
     const AnimatedScene::Part& part = scene.garments[g];
     const SkinBinding& skin = *part.asset.gltf.skin;
@@ -228,9 +226,9 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
       settling.tracked = units.to_solver(skinned);
       if (!pushed.succeeded()) {
         if (result.corrections_failed++ == 0)
-          result.first_failure = fmt::format("frame {} step {} of {}: {} at t = {:.3g} ({})", f,
-                                             s, steps, to_string(pushed.status), pushed.t,
-                                             pushed.message);
+          result.first_failure =
+              fmt::format("frame {} step {} of {}: {} at t = {:.3g} ({})", f, s, steps,
+                          to_string(pushed.status), pushed.t, pushed.message);
         garment_before = units.to_solver(skinned);
       } else {
         garment_before = fit_garment(settling, pushed.garment, parameters, quiet).garment;

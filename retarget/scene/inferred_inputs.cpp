@@ -1,5 +1,7 @@
 #include "retarget/scene/inferred_inputs.hpp"
 
+#include "retarget/scene/garment_pose.hpp"
+
 #include <algorithm>
 #include <filesystem>
 #include <optional>
@@ -142,7 +144,11 @@ SimulationMesh read_one_source_body(const std::string& path,
   } else if (!named_meshes.empty()) {
     throw InputError(path, 0, "--source-body-mesh is for glTF files only");
   }
-  SimulationMesh read = make_simulation_mesh(format.read(path, {meshes, true}).document);
+  MeshFileContents contents = format.read(path, {meshes, true});
+  // A body of the garment's own skin follows the garment into the target's pose.
+  if (scene.garment_pose && contents.gltf && contents.gltf->skin)
+    pose_like_garment(scene, *contents.gltf->skin, contents.document.positions);
+  SimulationMesh read = make_simulation_mesh(contents.document);
   if (read.mesh.faces.rows() == 0)
     throw InputError(path, 0, "source body has no (non-degenerate) triangle");
   return read;

@@ -10,6 +10,7 @@
 #include "core/io/obj_document.hpp"
 #include "core/io/rig_files.hpp"
 #include "core/mesh/simulation_mesh.hpp"
+#include "core/skinning/pose_transfer.hpp"
 #include "retarget/run/run_control.hpp"
 
 namespace gr {
@@ -71,6 +72,13 @@ struct GarmentLayer {
   bool skirt = false;
 };
 
+/// How the garment's skin was turned from its own pose into the target's.
+struct GarmentPose {
+  std::vector<std::string> joint_names;  ///< the garment skin's joints, in its order
+  std::vector<Eigen::Isometry3d> motions;
+  SkinningMethod method = SkinningMethod::kLinearBlend;
+};
+
 /// A scene as read and checked, in the files' own units and frames.
 struct Scene {
   ObjDocument garment_document;
@@ -98,6 +106,9 @@ struct Scene {
   /// The avatar's skin over its whole skeleton, weights #J×#avatar document positions:
   /// its glTF skin, else the target skeleton with the skin weights file; unset without.
   std::optional<SkinBinding> avatar_skin;
+  /// Set when the garment was turned into the target's pose before the solve
+  /// (pose_garment): per joint of its skin, its name and motion.
+  std::optional<GarmentPose> garment_pose;
 };
 
 /// Per simulation garment vertex, 1 where its layer is a skirt (GarmentLayer::skirt); empty

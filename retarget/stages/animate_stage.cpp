@@ -33,7 +33,8 @@ AnimationChannel frame_weights(const std::string& node, const std::vector<double
   channel.times = times;
   channel.values = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(times.size()), target_count);
   for (std::size_t f = 0; f < times.size(); ++f)
-    if (target_of_frame[f] >= 0) channel.values(static_cast<Eigen::Index>(f), target_of_frame[f]) = 1.0;
+    if (target_of_frame[f] >= 0)
+      channel.values(static_cast<Eigen::Index>(f), target_of_frame[f]) = 1.0;
   return channel;
 }
 
@@ -69,8 +70,7 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
     report.solves = correction.solves;
     report.corrections_failed = correction.corrections_failed;
     report.correction_seconds = correction.seconds;
-    std::vector<std::vector<int>> keyed(garments,
-                                        std::vector<int>(correction.offsets.size(), -1));
+    std::vector<std::vector<int>> keyed(garments, std::vector<int>(correction.offsets.size(), -1));
     for (std::size_t f = 0; f < correction.offsets.size(); ++f) {
       if (!correction.corrected[f]) continue;
       ++report.corrected_frames;
@@ -79,9 +79,10 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
         targets[g].deltas.push_back(correction.offsets[f][g]);
       }
     }
-    progress.log("animate", "'{}': {} of {} frames corrected ({} poses solved, {} failed) in {:.2f} s",
-                 clip.clip.name, report.corrected_frames, correction.offsets.size(),
-                 report.solves, report.corrections_failed, report.correction_seconds);
+    progress.log("animate",
+                 "'{}': {} of {} frames corrected ({} poses solved, {} failed) in {:.2f} s",
+                 clip.clip.name, report.corrected_frames, correction.offsets.size(), report.solves,
+                 report.corrections_failed, report.correction_seconds);
     if (!correction.first_failure.empty())
       progress.log("animate", "first failed correction: {}", correction.first_failure);
     target_of_frame.push_back(std::move(keyed));
@@ -101,10 +102,9 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
           bound_channels(clips[c].clip, bind_clip(skin, clips[c].clip, clips[c].translations));
       for (const std::size_t g : members)
         if (!targets[g].deltas.empty())
-          clip.channels.push_back(frame_weights(scene.garments[g].asset.gltf.node_name,
-                                                frame_times(clips[c].clip, options.fps),
-                                                target_of_frame[c][g],
-                                                static_cast<int>(targets[g].deltas.size())));
+          clip.channels.push_back(frame_weights(
+              scene.garments[g].asset.gltf.node_name, frame_times(clips[c].clip, options.fps),
+              target_of_frame[c][g], static_cast<int>(targets[g].deltas.size())));
       file_clips.push_back(std::move(clip));
     }
     add_glb_animation(path, file_targets, file_clips);

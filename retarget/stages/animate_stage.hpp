@@ -15,7 +15,7 @@ struct AnimateInput {
   /// Per garment, its written GLB (staging) and its mesh there; one garment per file.
   const std::vector<std::string>& written_files;
   const std::vector<std::string>& written_meshes;
-  const std::string& avatar;                       ///< the avatar's glTF file, as given
+  const std::string& avatar;                      ///< the avatar's glTF file, as given
   const std::vector<std::string>& avatar_meshes;  ///< its meshes read (empty: the skin's)
 };
 

@@ -114,9 +114,9 @@ void write_bending_arm_scene(const BendingArmScene& scene, const std::string& fo
   write_glb_meshes((dir / "arm.glb").string(),
                    {GlbMesh{"arm", &scene.arm, nullptr, scene.arm.positions, &scene.arm_skin}},
                    {scene.bend});
-  write_glb_meshes((dir / "sleeve.glb").string(), {GlbMesh{"sleeve", &scene.sleeve, nullptr,
-                                                           scene.sleeve.positions,
-                                                           &scene.sleeve_skin}});
+  write_glb_meshes(
+      (dir / "sleeve.glb").string(),
+      {GlbMesh{"sleeve", &scene.sleeve, nullptr, scene.sleeve.positions, &scene.sleeve_skin}});
   ObjDocument stand_in = tube(0.0, 2.0, 0.05, 2, 3, false);
   SkinBinding stand_in_skin = arm_joints();
   stand_in_skin.weights = elbow_weights(stand_in.positions, 0.0);

@@ -22,13 +22,13 @@ std::filesystem::path arm_scene(const std::string& name) {
   return dir;
 }
 
-TEST_CASE("validate --animation finds the frames where a skinned sleeve crosses its bending arm", "[validate][animation]") {
+TEST_CASE("validate --animation finds the frames where a skinned sleeve crosses its bending arm",
+          "[validate][animation]") {
   const auto dir = arm_scene("validate_animation_bend");
-  const test::CliRun run = test::run_cli(
-      {"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
-       (dir / "arm.glb").string(), "--animation", "bend", "--report",
-       (dir / "report.json").string()},
-      "validate_animation_bend");
+  const test::CliRun run = test::run_cli({"validate", "--garment", (dir / "sleeve.glb").string(),
+                                          "--avatar", (dir / "arm.glb").string(), "--animation",
+                                          "bend", "--report", (dir / "report.json").string()},
+                                         "validate_animation_bend");
   INFO(run.out << run.err);
   CHECK(run.exit_code == 1);
   CHECK_THAT(run.out, Catch::Contains("animation 'bend': 31 frames at 30 fps"));
@@ -53,11 +53,10 @@ TEST_CASE("validate --animation finds the frames where a skinned sleeve crosses 
 TEST_CASE("a clip from another file drives the joints of the same names", "[validate][animation]") {
   const auto dir = arm_scene("validate_animation_other_file");
   const auto report_of = [&](const std::string& spec, const std::string& name) {
-    const test::CliRun run = test::run_cli(
-        {"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
-         (dir / "arm.glb").string(), "--animation", spec, "--report",
-         (dir / (name + ".json")).string()},
-        name);
+    const test::CliRun run = test::run_cli({"validate", "--garment", (dir / "sleeve.glb").string(),
+                                            "--avatar", (dir / "arm.glb").string(), "--animation",
+                                            spec, "--report", (dir / (name + ".json")).string()},
+                                           name);
     INFO(run.out << run.err);
     CHECK(run.exit_code == 1);
     return read_json(dir / (name + ".json"))["animations"].at(0);
@@ -72,26 +71,29 @@ TEST_CASE("a clip from another file drives the joints of the same names", "[vali
   CHECK(report_of((dir / "clip.glb").string(), "whole_file")["frames"] == own["frames"]);
 }
 
-TEST_CASE("validate --animation refuses a clip it cannot find and an unskinned garment", "[validate][animation]") {
+TEST_CASE("validate --animation refuses a clip it cannot find and an unskinned garment",
+          "[validate][animation]") {
   const auto dir = arm_scene("validate_animation_refusals");
-  const test::CliRun unknown = test::run_cli(
-      {"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
-       (dir / "arm.glb").string(), "--animation", "wave"},
-      "validate_animation_unknown");
+  const test::CliRun unknown =
+      test::run_cli({"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+                     (dir / "arm.glb").string(), "--animation", "wave"},
+                    "validate_animation_unknown");
   CHECK(unknown.exit_code == 2);
-  CHECK_THAT(unknown.err, Catch::Contains("no animation named 'wave'") && Catch::Contains("'bend'"));
+  CHECK_THAT(unknown.err,
+             Catch::Contains("no animation named 'wave'") && Catch::Contains("'bend'"));
   CHECK(test::lines_of(unknown.err).size() == 1);
 
   std::ofstream(dir / "sleeve.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  const test::CliRun unskinned = test::run_cli(
-      {"validate", "--garment", (dir / "sleeve.obj").string(), "--avatar",
-       (dir / "arm.glb").string(), "--animation", "bend"},
-      "validate_animation_unskinned");
+  const test::CliRun unskinned =
+      test::run_cli({"validate", "--garment", (dir / "sleeve.obj").string(), "--avatar",
+                     (dir / "arm.glb").string(), "--animation", "bend"},
+                    "validate_animation_unskinned");
   CHECK(unskinned.exit_code == 2);
   CHECK_THAT(unskinned.err, Catch::Contains("sleeve.obj") && Catch::Contains("skin"));
 }
 
-TEST_CASE("retarget --animation writes a sleeve certified in every frame, and validate agrees", "[retarget][animation]") {
+TEST_CASE("retarget --animation writes a sleeve certified in every frame, and validate agrees",
+          "[retarget][animation]") {
   const auto dir = arm_scene("retarget_animation_bend");
   const auto out = dir / "out";
   const test::CliRun run = test::run_cli(
@@ -110,22 +112,23 @@ TEST_CASE("retarget --animation writes a sleeve certified in every frame, and va
   CHECK(clip["seconds_per_frame"].get<double>() > 0.0);
 
   // The written file played on its own, by the validator, with the clip of the arm's file.
-  const test::CliRun check = test::run_cli(
-      {"validate", "--garment", (out / "garment.glb").string(), "--avatar",
-       (dir / "arm.glb").string(), "--animation", "bend"},
-      "retarget_animation_validate");
+  const test::CliRun check =
+      test::run_cli({"validate", "--garment", (out / "garment.glb").string(), "--avatar",
+                     (dir / "arm.glb").string(), "--animation", "bend"},
+                    "retarget_animation_validate");
   INFO(check.out << check.err);
   CHECK(check.exit_code == 0);
   CHECK_THAT(check.out, Catch::Contains("31 frames at 30 fps, 0 crossing"));
 }
 
-TEST_CASE("retarget --animation is refused up front without a skinned output", "[retarget][animation]") {
+TEST_CASE("retarget --animation is refused up front without a skinned output",
+          "[retarget][animation]") {
   const auto dir = arm_scene("retarget_animation_obj");
-  const test::CliRun run = test::run_cli(
-      {"retarget", "--garment", (dir / "sleeve.glb").string(), "--avatar",
-       (dir / "arm.glb").string(), "--animation", "bend", "--format", "obj", "--out",
-       (dir / "out").string(), "--quiet"},
-      "retarget_animation_obj");
+  const test::CliRun run =
+      test::run_cli({"retarget", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+                     (dir / "arm.glb").string(), "--animation", "bend", "--format", "obj", "--out",
+                     (dir / "out").string(), "--quiet"},
+                    "retarget_animation_obj");
   CHECK(run.exit_code == 2);
   CHECK_THAT(run.err, Catch::Contains("--animation needs"));
   CHECK_FALSE(std::filesystem::exists(dir / "out"));

@@ -19,7 +19,8 @@ double z_angle_degrees(const Eigen::VectorXd& q) {
   return 2.0 * std::atan2(q(2), q(3)) * 180.0 / kPi;
 }
 
-TEST_CASE("an animation written into a GLB reads back with its channel and span", "[gltf][animation]") {
+TEST_CASE("an animation written into a GLB reads back with its channel and span",
+          "[gltf][animation]") {
   const auto dir = test::fresh_temp_dir("gltf_animation_round_trip");
   const BendingArmScene scene = make_bending_arm_scene(90.0);
   write_bending_arm_scene(scene, dir.string());
@@ -68,13 +69,15 @@ TEST_CASE("step and cubic spline channels interpolate as glTF defines", "[animat
   CHECK(sample_channel(cubic, h)(0) / h == Approx(8.0).epsilon(1e-4));
 }
 
-TEST_CASE("a channel whose times run backwards is refused with the file named", "[gltf][animation]") {
+TEST_CASE("a channel whose times run backwards is refused with the file named",
+          "[gltf][animation]") {
   const auto dir = test::fresh_temp_dir("gltf_animation_backwards");
   write_bending_arm_scene(make_bending_arm_scene(), dir.string());
   tinygltf::Model model = test::load_glb((dir / "arm.glb").string());
   const int input = model.animations.at(0).samplers.at(0).input;
   const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(input));
-  const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
+  const tinygltf::BufferView& view =
+      model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
   auto* times = reinterpret_cast<float*>(model.buffers[0].data.data() + view.byteOffset +
                                          accessor.byteOffset);
   times[1] = 2.0f;  // 0, 2, 1

@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include "core/io/gltf_document.hpp"
-#include "core/skinning/skin_pose.hpp"
 #include "core/io/gltf_fixture.hpp"
+#include "core/skinning/skin_pose.hpp"
 #include "scenes/synthetic/bending_arm.hpp"
 #include "test_support.hpp"
 
@@ -16,7 +16,8 @@ double largest_gap(const MatrixX3d& a, const MatrixX3d& b) {
   return (a - b).rowwise().norm().maxCoeff();
 }
 
-TEST_CASE("posing a skin at its rest values gives back the positions read", "[skinning][animation]") {
+TEST_CASE("posing a skin at its rest values gives back the positions read",
+          "[skinning][animation]") {
   const auto dir = test::fresh_temp_dir("skin_pose_rest");
   const BendingArmScene scene = make_bending_arm_scene(90.0);
   write_bending_arm_scene(scene, dir.string());
@@ -53,7 +54,8 @@ TEST_CASE("posing a skin at its rest values gives back the positions read", "[sk
   CHECK(largest_gap(pose_skinned_mesh(skin, skinned, worlds), asset.document.positions) < 1e-12);
 }
 
-TEST_CASE("a bent elbow turns the forearm rigidly and blends the band around it", "[skinning][animation]") {
+TEST_CASE("a bent elbow turns the forearm rigidly and blends the band around it",
+          "[skinning][animation]") {
   const BendingArmScene scene = make_bending_arm_scene(90.0);
   const SkinBinding& skin = scene.arm_skin;
   const ClipBinding binding = bind_clip(skin, scene.bend, ClipTranslations::kAll);
@@ -75,7 +77,8 @@ TEST_CASE("a bent elbow turns the forearm rigidly and blends the band around it"
   }
 }
 
-TEST_CASE("a clip from another rig moves only the root joints by its translations", "[skinning][animation]") {
+TEST_CASE("a clip from another rig moves only the root joints by its translations",
+          "[skinning][animation]") {
   const BendingArmScene scene = make_bending_arm_scene(90.0);
   AnimationClip clip = scene.bend;
   AnimationChannel stretch;  // a longer forearm: the other rig's elbow sits further out

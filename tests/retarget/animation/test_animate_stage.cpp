@@ -11,7 +11,8 @@
 namespace gr {
 namespace {
 
-TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected frames do not", "[animation]") {
+TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected frames do not",
+          "[animation]") {
   const auto dir = test::fresh_temp_dir("animate_bending_elbow");
   write_bending_arm_scene(make_bending_arm_scene(90.0), dir.string());
   const std::string sleeve = (dir / "sleeve.glb").string();
