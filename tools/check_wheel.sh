@@ -13,8 +13,9 @@
 #   tools/check_wheel.sh [WHEEL]     without WHEEL, builds it first (tools/build_wheel.sh)
 #
 # Needs root (debootstrap, chroot and mounts), debootstrap, unshare and the network to a
-# Debian mirror ($GR_DEBIAN_MIRROR, default deb.debian.org) and PyPI; without root or
-# debootstrap it exits 77, which CTest reports as skipped. The bare root is made once into
+# Debian mirror ($GR_DEBIAN_MIRROR, by default the one this machine's apt sources name for
+# bookworm, else debootstrap's own) and PyPI; without root or debootstrap it exits 77,
+# which CTest reports as skipped. The bare root is made once into
 # $GR_WHEEL_BARE_ROOT (default build/wheel-check/bare-debian12) and copied afresh for each
 # check into build/wheel-check/root, which is removed at the end.
 set -euo pipefail
@@ -23,7 +24,16 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 check_dir="$root/build/wheel-check"
 bare="${GR_WHEEL_BARE_ROOT:-$check_dir/bare-debian12}"
 run_root="$check_dir/root"
-mirror="${GR_DEBIAN_MIRROR:-http://deb.debian.org/debian}"
+
+# The first mirror this machine's apt sources give for bookworm (deb822 and one-line files).
+apt_mirror() {
+  awk '/^URIs:/ { uri = $2 } /^Suites:/ { for (i = 2; i <= NF; i++) if ($i == "bookworm") print uri }' \
+    /etc/apt/sources.list.d/*.sources 2>/dev/null || true
+  awk '$1 == "deb" { for (i = 2; i < NF; i++) if ($i ~ /^[a-z]+:\/\//) { if ($(i + 1) == "bookworm") print $i; break } }' \
+    /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null || true
+}
+mirror="${GR_DEBIAN_MIRROR:-}"
+[ -n "$mirror" ] || mirror="$(apt_mirror | head -n 1)" || true
 
 skip() {
   echo "skipped: $1" >&2
@@ -51,9 +61,10 @@ remove_root() {
 
 if [ ! -f "$bare/.bare-root-complete" ]; then
   rm -rf "$bare"
-  mkdir -p "$(dirname "$bare")"
+  mkdir -p "$(dirname "$bare")" "$check_dir"
   echo "making a bare Debian 12 root in $bare (debootstrap, a few minutes)" >&2
-  debootstrap --variant=minbase --include=python3,python3-venv bookworm "$bare" "$mirror" >"$check_dir/debootstrap.log" 2>&1 ||
+  debootstrap --variant=minbase --include=python3,python3-venv bookworm "$bare" ${mirror:+"$mirror"} \
+    >"$check_dir/debootstrap.log" 2>&1 ||
     { tail -n 20 "$check_dir/debootstrap.log" >&2; echo "error: debootstrap failed" >&2; exit 1; }
   rm -rf "$bare"/var/cache/apt/archives/*.deb
   touch "$bare/.bare-root-complete"

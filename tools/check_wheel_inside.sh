@@ -13,6 +13,13 @@ fail() {
   echo "FAILED: $1" >&2
   exit 1
 }
+# Runs a command and sets `seconds` to its wall time.
+timed() {
+  local start
+  start=$(date +%s.%N)
+  "$@"
+  seconds=$(awk -v start="$start" -v end="$(date +%s.%N)" 'BEGIN { printf "%.1f", end - start }')
+}
 
 echo "system: $(. /etc/os-release && echo "$PRETTY_NAME"), $(python3 --version), $(dpkg-query -W | wc -l) Debian packages"
 # None of the build's libraries (GMP and OpenSSL are in any Debian 12, for apt and Python's
@@ -25,10 +32,8 @@ for package in libcholmod3 libatlas3-base libblas3 libopenblas0 libopenblas0-pth
 done
 
 python3 -m venv "$venv"
-start=$(date +%s.%N)
-"$venv/bin/pip" install -q --disable-pip-version-check "$wheel"
-end=$(date +%s.%N)
-echo "pip install of the wheel (with NumPy from PyPI): $(echo "$start $end" | awk '{ printf "%.1f", $2 - $1 }') s"
+timed "$venv/bin/pip" install -q --disable-pip-version-check "$wheel"
+echo "pip install of the wheel (with NumPy from PyPI): $seconds s"
 
 package="$("$venv/bin/python" -c 'import garment_retarget, os; print(os.path.dirname(garment_retarget.__file__))')"
 [[ "$package" == "$venv"/* ]] || fail "garment_retarget imported from $package, not the installed wheel"
@@ -71,9 +76,7 @@ echo "gr.retarget: certified, the golden digest $digest"
 
 # The extras, from the installed wheel's metadata, and the Python tests against the installed
 # package (Ray's cluster test too, with the [ray] extra).
-start=$(date +%s.%N)
-"$venv/bin/pip" install -q --disable-pip-version-check "$wheel[dask,ray,test]"
-end=$(date +%s.%N)
-echo "pip install of the extras [dask,ray,test]: $(echo "$start $end" | awk '{ printf "%.1f", $2 - $1 }') s"
+timed "$venv/bin/pip" install -q --disable-pip-version-check "$wheel[dask,ray,test]"
+echo "pip install of the extras [dask,ray,test]: $seconds s"
 cd "$check"
 "$venv/bin/python" -m pytest -q -p no:cacheprovider -rs python/tests
