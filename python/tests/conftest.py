@@ -1,3 +1,7 @@
+"""The tests read nothing of the source tree but the bundled scene, two folders up from here:
+copied with them (python/tests and scenes/dress_form), they test an installed wheel
+(tools/check_wheel.sh does so on a bare Debian 12)."""
+
 import os
 from pathlib import Path
 
@@ -5,6 +9,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "dress_form"
+
+
+def pytest_report_header(config):
+    import garment_retarget
+
+    return f"garment_retarget: {Path(garment_retarget.__file__).parent}"
 
 
 @pytest.fixture(scope="session")
