@@ -56,7 +56,7 @@ gr::AnimationClip reach_clip(const gr::SkinBinding& skin, const gr::AnimationCli
   const std::vector<Eigen::Matrix4d> base_worlds = gr::joint_worlds(skin, base);
   const Eigen::Vector3d side = Eigen::Vector3d::UnitX();  // glTF: +Y up, +Z forward
   const std::map<std::string, Eigen::Quaterniond> reach = {
-      {"LeftArm", turn(side, -70.0)},    {"RightArm", turn(side, -50.0)},
+      {"LeftArm", turn(side, -70.0)},     {"RightArm", turn(side, -50.0)},
       {"LeftForeArm", turn(side, -30.0)}, {"LeftUpLeg", turn(side, -45.0)},
       {"LeftLeg", turn(side, 60.0)},      {"Spine1", turn(Eigen::Vector3d::UnitY(), 20.0)}};
   gr::AnimationClip clip;
@@ -124,9 +124,9 @@ void write_reach_clip(const std::string& avatar, const std::string& idle_path,
   gr::SkinBinding stand_in_skin = skin;
   stand_in_skin.weights = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(skin.joints.size()), 3);
   stand_in_skin.weights.row(0).setOnes();
-  gr::write_glb_meshes(path, {gr::GlbMesh{"stand_in", &stand_in, nullptr, stand_in.positions,
-                                          &stand_in_skin}},
-                       {clip});
+  gr::write_glb_meshes(
+      path, {gr::GlbMesh{"stand_in", &stand_in, nullptr, stand_in.positions, &stand_in_skin}},
+      {clip});
 }
 
 }  // namespace
@@ -156,8 +156,7 @@ int main(int argc, char** argv) {
       "crossing as written | correction s/frame | run wall s | CPU s | result |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Garment& garment : garments()) {
-    if (!only.empty() && std::find(only.begin(), only.end(), garment.label) == only.end())
-      continue;
+    if (!only.empty() && std::find(only.begin(), only.end(), garment.label) == only.end()) continue;
     for (const std::string& clip : {idle, reach}) {
       gr::RetargetOptions options;
       options.inputs.garment = garment.file;
@@ -183,9 +182,8 @@ int main(int argc, char** argv) {
       const gr::RetargetReport& r = result.report;
       if (!r.animation || r.animation->clips.empty()) {
         std::printf("| %s | %d | %s | - | - | - | - | - | - | %.1f | %.1f | %s: %s |\n",
-                    garment.label.c_str(), r.normalize.garment_faces,
-                    fs::path(clip).stem().c_str(), wall.seconds(), cpu,
-                    gr::to_string(result.status), result.message.c_str());
+                    garment.label.c_str(), r.normalize.garment_faces, fs::path(clip).stem().c_str(),
+                    wall.seconds(), cpu, gr::to_string(result.status), result.message.c_str());
         continue;
       }
       const gr::AnimationReport& a = r.animation->clips.front();
@@ -193,9 +191,8 @@ int main(int argc, char** argv) {
       std::printf("| %s | %d | %s | %zu | %zu | %d | %d | %zu | %.2f | %.1f | %.1f | %s |\n",
                   garment.label.c_str(), r.normalize.garment_faces, fs::path(clip).stem().c_str(),
                   a.written.frames.size(), a.skinned.crossing_frames(), a.corrected_frames,
-                  a.corrections_failed, a.written.crossing_frames(),
-                  a.correction_seconds / frames, wall.seconds(), cpu,
-                  gr::to_string(result.status));
+                  a.corrections_failed, a.written.crossing_frames(), a.correction_seconds / frames,
+                  wall.seconds(), cpu, gr::to_string(result.status));
       std::fflush(stdout);
     }
   }

@@ -18,6 +18,7 @@ void record_inputs(RetargetReport& report, const ReadOutput& read, const Prepare
   report.seconds.normalize = prepare.seconds;
   report.inferred = inferred.inferred;
   report.ease = inferred.ease;
+  report.pose.source_body_posed = inferred.source_body_posed;
 }
 
 void record_shrink(RetargetReport& report, const ShrinkOutput& shrink,

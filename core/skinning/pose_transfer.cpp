@@ -69,8 +69,7 @@ std::vector<Eigen::Isometry3d> pose_transfer_motions(const Skeleton& source,
     std::vector<Eigen::Vector3d> from;
     std::vector<Eigen::Vector3d> to;
     for (const int c : children[j]) {
-      const Eigen::Vector3d bone =
-          source.joints.row(c).transpose() - rest;
+      const Eigen::Vector3d bone = source.joints.row(c).transpose() - rest;
       const Eigen::Vector3d wanted = target.joints.row(c).transpose() -
                                      target.joints.row(static_cast<Eigen::Index>(j)).transpose();
       if (bone.norm() > 0.0 && wanted.norm() > 0.0) {
@@ -96,8 +95,7 @@ MatrixX3d moved_joints(const Skeleton& source, const std::vector<Eigen::Isometry
   return joints;
 }
 
-MatrixX3d skin_by_motions(const Eigen::Ref<const MatrixX3d>& points,
-                          const Eigen::MatrixXd& weights,
+MatrixX3d skin_by_motions(const Eigen::Ref<const MatrixX3d>& points, const Eigen::MatrixXd& weights,
                           const std::vector<Eigen::Isometry3d>& motions, SkinningMethod method) {
   MatrixX3d out = points;
   std::vector<Eigen::Quaterniond> rotations;

@@ -10,8 +10,8 @@ namespace gr {
 
 /// How skinning blends the joints' motions at a vertex.
 enum class SkinningMethod {
-  kLinearBlend,      ///< the weighted sum of the joints' matrices (what engines play)
-  kDualQuaternion,   ///< the normalized weighted sum of their dual quaternions: no collapse
+  kLinearBlend,     ///< the weighted sum of the joints' matrices (what engines play)
+  kDualQuaternion,  ///< the normalized weighted sum of their dual quaternions: no collapse
 };
 
 const char* to_string(SkinningMethod method);
@@ -33,8 +33,7 @@ MatrixX3d moved_joints(const Skeleton& source, const std::vector<Eigen::Isometry
 /// `points` (#P×3) moved by the joints' motions blended with `weights` (#J×#P, columns
 /// normalized here; a column summing to 0 keeps its point).
 /// @pre weights has one row per motion.
-MatrixX3d skin_by_motions(const Eigen::Ref<const MatrixX3d>& points,
-                          const Eigen::MatrixXd& weights,
+MatrixX3d skin_by_motions(const Eigen::Ref<const MatrixX3d>& points, const Eigen::MatrixXd& weights,
                           const std::vector<Eigen::Isometry3d>& motions, SkinningMethod method);
 
 }  // namespace gr

@@ -19,6 +19,9 @@ namespace {
 /// as the prepare stage leaves them for the solve.
 constexpr int kTangleRings = 2;
 
+/// Tries of a frame, each in steps half as long as the one before.
+constexpr int kAttempts = 3;
+
 /// Passes the run's stop on to the solves without their per-step progress lines: a clip
 /// runs a solve or two per frame.
 class StopOnly final : public Interrupter {
@@ -195,45 +198,62 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
           clip_pose(*scene.garments[g].asset.gltf.skin, clip, garment_bindings[g], times[f]));
     const MatrixX3d avatar_target = units.to_solver(pose_scene(scene, target).avatar.vertices);
     const double reach = (avatar_target - avatar_before).rowwise().norm().maxCoeff();
-    const int steps = std::max(1, static_cast<int>(std::ceil(reach / max_step)));
+    const int first_steps = std::max(1, static_cast<int>(std::ceil(reach / max_step)));
+    const MatrixX3d garment_start = garment_before;
+    const MatrixX3d avatar_start = avatar_before;
     PosedScene posed;
-    for (int s = 1; s <= steps; ++s) {
-      interrupter.check();
-      posed = pose_scene(scene, s == steps ? target : blend(previous, target, double(s) / steps));
-      ++result.steps;
-      const MatrixX3d avatar_now = units.to_solver(posed.avatar.vertices);
-      const MatrixX3d skinned = merged.stack(posed.garments);
-      if (check_posed_frame(scene, posed.garments, posed.avatar, times[f]).total() == 0) {
-        garment_before = units.to_solver(skinned);
+    // A step that cannot push the garment clear (a pinch between closing parts) is tried
+    // again from the frame's start in steps half as long.
+    for (int attempt = 0; attempt < kAttempts; ++attempt) {
+      const int steps = first_steps << attempt;
+      const bool last_attempt = attempt + 1 == kAttempts;
+      garment_before = garment_start;
+      avatar_before = avatar_start;
+      result.corrected[f] = false;
+      bool stalled = false;
+      for (int s = 1; s <= steps; ++s) {
+        interrupter.check();
+        posed = pose_scene(scene, s == steps ? target : blend(previous, target, double(s) / steps));
+        ++result.steps;
+        const MatrixX3d avatar_now = units.to_solver(posed.avatar.vertices);
+        const MatrixX3d skinned = merged.stack(posed.garments);
+        if (check_posed_frame(scene, posed.garments, posed.avatar, times[f]).total() == 0) {
+          garment_before = units.to_solver(skinned);
+          avatar_before = avatar_now;
+          continue;
+        }
+        ++result.solves;
+        if (s == steps) result.corrected[f] = true;
+        // The avatar moves from the last pose to this one, pushing the garment...
+        GarmentScene moving;
+        moving.garment = {garment_before, rest.faces};
+        moving.avatar = {avatar_now, scene.avatar.mesh.faces};
+        moving.shrunk_avatar = avatar_before;
+        moving.garment_tangles = tangles;
+        const InflationResult pushed = inflate_avatar(moving, parameters, {}, quiet);
+        if (!pushed.succeeded() && !last_attempt) {
+          stalled = true;
+          break;
+        }
+        // ...then the garment settles toward its skinned place, keeping its rest shape.
+        GarmentScene settling;
+        settling.garment = rest;
+        settling.avatar = moving.avatar;
+        settling.shrunk_avatar = avatar_now;
+        settling.garment_tangles = tangles;
+        settling.tracked = units.to_solver(skinned);
+        if (!pushed.succeeded()) {
+          if (result.corrections_failed++ == 0)
+            result.first_failure =
+                fmt::format("frame {} step {} of {}: {} at t = {:.3g} ({})", f, s, steps,
+                            to_string(pushed.status), pushed.t, pushed.message);
+          garment_before = units.to_solver(skinned);
+        } else {
+          garment_before = fit_garment(settling, pushed.garment, parameters, quiet).garment;
+        }
         avatar_before = avatar_now;
-        continue;
       }
-      ++result.solves;
-      if (s == steps) result.corrected[f] = true;
-      // The avatar moves from the last pose to this one, pushing the garment...
-      GarmentScene moving;
-      moving.garment = {garment_before, rest.faces};
-      moving.avatar = {avatar_now, scene.avatar.mesh.faces};
-      moving.shrunk_avatar = avatar_before;
-      moving.garment_tangles = tangles;
-      const InflationResult pushed = inflate_avatar(moving, parameters, {}, quiet);
-      // ...then the garment settles toward its skinned place, keeping its rest shape.
-      GarmentScene settling;
-      settling.garment = rest;
-      settling.avatar = moving.avatar;
-      settling.shrunk_avatar = avatar_now;
-      settling.garment_tangles = tangles;
-      settling.tracked = units.to_solver(skinned);
-      if (!pushed.succeeded()) {
-        if (result.corrections_failed++ == 0)
-          result.first_failure =
-              fmt::format("frame {} step {} of {}: {} at t = {:.3g} ({})", f, s, steps,
-                          to_string(pushed.status), pushed.t, pushed.message);
-        garment_before = units.to_solver(skinned);
-      } else {
-        garment_before = fit_garment(settling, pushed.garment, parameters, quiet).garment;
-      }
-      avatar_before = avatar_now;
+      if (!stalled) break;
     }
     previous = target;
     // The frame's garment as offsets of the skinned one, taken back into bind space.

@@ -66,8 +66,8 @@ PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method) {
   report.posed = true;
   report.joints = static_cast<int>(motions.size());
   for (const Eigen::Isometry3d& m : motions)
-    report.largest_turn_degrees = std::max(
-        report.largest_turn_degrees, Eigen::AngleAxisd(m.linear()).angle() * 180.0 / M_PI);
+    report.largest_turn_degrees =
+        std::max(report.largest_turn_degrees, Eigen::AngleAxisd(m.linear()).angle() * 180.0 / M_PI);
   const ShapeChange change = measure_shape_change(before, scene.garment.mesh.vertices);
   report.mean_edge_change = change.mean_edge_change;
   report.p95_edge_change = change.p95_edge_change;

@@ -125,7 +125,7 @@ namespace {
 /// garments' own file leaves out every garment mesh of that file by default.
 SimulationMesh read_one_source_body(const std::string& path,
                                     const std::vector<std::string>& named_meshes,
-                                    const Scene& scene) {
+                                    const Scene& scene, bool& posed) {
   const MeshFormat& format = mesh_format_for_path(path);
   std::vector<std::string> meshes = named_meshes;
   if (format.named_meshes) {
@@ -146,8 +146,8 @@ SimulationMesh read_one_source_body(const std::string& path,
   }
   MeshFileContents contents = format.read(path, {meshes, true});
   // A body of the garment's own skin follows the garment into the target's pose.
-  if (scene.garment_pose && contents.gltf && contents.gltf->skin)
-    pose_like_garment(scene, *contents.gltf->skin, contents.document.positions);
+  posed = scene.garment_pose && contents.gltf && contents.gltf->skin &&
+          pose_like_garment(scene, *contents.gltf->skin, contents.document.positions);
   SimulationMesh read = make_simulation_mesh(contents.document);
   if (read.mesh.faces.rows() == 0)
     throw InputError(path, 0, "source body has no (non-degenerate) triangle");
@@ -169,14 +169,16 @@ bool no_fit_given(const ScenePaths& paths) {
 }
 
 TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
-                              const NormalizedScene& normalized) {
+                              const NormalizedScene& normalized, bool* followed_pose) {
   const Similarity& to_scene = normalized.normalization.garment_to_scene;
   TriangleMesh body;
   for (std::size_t k = 0; k < scene.layers.size(); ++k) {
     const std::string& path = k == 0 ? paths.source_body : paths.more_garments[k - 1].source_body;
     if (path.empty()) continue;
+    bool posed = false;
     const SimulationMesh read = read_one_source_body(
-        path, k == 0 ? paths.source_body_meshes : std::vector<std::string>{}, scene);
+        path, k == 0 ? paths.source_body_meshes : std::vector<std::string>{}, scene, posed);
+    if (followed_pose) *followed_pose = posed;
     const Eigen::Affine3d to_first(scene.layers[k].to_first_frame);
     MatrixX3d vertices(read.mesh.vertices.rows(), 3);
     for (Eigen::Index v = 0; v < vertices.rows(); ++v)

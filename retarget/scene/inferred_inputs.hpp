@@ -70,8 +70,10 @@ Eigen::MatrixXd skin_weights_for_shrink(const Scene& scene, const NormalizedScen
 /// @throw InputError when it cannot be read or has no (non-degenerate) triangle.
 /// In an outfit, each garment's own body (GarmentPaths::source_body) is placed by its frame
 /// (GarmentLayer::to_first_frame), and all are merged: one body for every layer.
+/// When the garment was turned into the target's pose (Scene::garment_pose), a body of its
+/// skin follows it; `followed_pose`, when given, says whether it did.
 TriangleMesh read_source_body(const ScenePaths& paths, const Scene& scene,
-                              const NormalizedScene& normalized);
+                              const NormalizedScene& normalized, bool* followed_pose = nullptr);
 
 /// Whether a source body was given, for the first garment or another of the outfit.
 bool source_body_given(const ScenePaths& paths);

@@ -1,5 +1,6 @@
 #include "retarget/stages/animate_stage.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "core/common/errors.hpp"
@@ -22,15 +23,18 @@ AnimationClip bound_channels(const AnimationClip& clip, const ClipBinding& bindi
   return kept;
 }
 
-/// A weights channel that, at each sampled frame, turns on that frame's target (STEP: held
-/// until the next frame) and all others off.
+/// A weights channel that turns on each sampled frame's target, and all others off, from
+/// half a frame before it to half a frame before the next (STEP keys): a player that
+/// samples at a frame's time, rounded either way (keyframe times are 32-bit floats), meets
+/// that frame's correction.
 AnimationChannel frame_weights(const std::string& node, const std::vector<double>& times,
-                               const std::vector<int>& target_of_frame, int target_count) {
+                               double fps, const std::vector<int>& target_of_frame,
+                               int target_count) {
   AnimationChannel channel;
   channel.node = node;
   channel.path = ChannelPath::kWeights;
   channel.interpolation = KeyInterpolation::kStep;
-  channel.times = times;
+  for (const double time : times) channel.times.push_back(std::max(time - 0.5 / fps, 0.0));
   channel.values = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(times.size()), target_count);
   for (std::size_t f = 0; f < times.size(); ++f)
     if (target_of_frame[f] >= 0)
@@ -104,7 +108,7 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
         if (!targets[g].deltas.empty())
           clip.channels.push_back(frame_weights(
               scene.garments[g].asset.gltf.node_name, frame_times(clips[c].clip, options.fps),
-              target_of_frame[c][g], static_cast<int>(targets[g].deltas.size())));
+              options.fps, target_of_frame[c][g], static_cast<int>(targets[g].deltas.size())));
       file_clips.push_back(std::move(clip));
     }
     add_glb_animation(path, file_targets, file_clips);

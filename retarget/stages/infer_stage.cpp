@@ -59,7 +59,12 @@ InferOutput run_infer(const InferInput& input, const InferOptions& options, Prog
   // The source body gives the no-fit inference and the ease: read once.
   std::optional<TriangleMesh>& source_body = out.source_body;
   if (source_body_given(input.paths))
-    source_body = read_source_body(input.paths, input.scene, input.normalized);
+    source_body =
+        read_source_body(input.paths, input.scene, input.normalized, &out.source_body_posed);
+  if (source_body && input.scene.garment_pose && !out.source_body_posed)
+    progress.warn(
+        "the source body does not have the garment's skin: it keeps its pose while the garment "
+        "was turned into the target's, so the ease measured on it is off (give --pose as-given)");
   out.no_fit = no_fit_for_run(input.scene, input.normalized, no_fit_given(input.paths),
                               source_body ? &*source_body : nullptr, options.out_dir,
                               options.inference, out.inferred);

@@ -44,6 +44,7 @@ struct InferOutput {
     return inferred.skin_weights_inferred ? skin_weights : Eigen::MatrixXd();
   }
   EaseReport ease;
+  bool source_body_posed = false;  ///< it followed the garment into the target's pose
   double binding_seconds = 0.0;
 };
 

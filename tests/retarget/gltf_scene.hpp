@@ -1,13 +1,36 @@
 #pragma once
 
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
 #include "core/io/gltf_document.hpp"
 #include "core/skeleton/skin_matching.hpp"
 
 namespace gr::test {
+
+/// What the Khronos glTF validator said about a file (its exit code 1 means errors).
+struct ValidatorRun {
+  int exit_code = -1;
+  nlohmann::json summary;
+};
+
+inline ValidatorRun run_gltf_validator(const std::string& path) {
+  const auto dir = test::fresh_temp_dir("gltf_validator");
+  const std::string out = (dir / "summary.json").string();
+  const std::string command = test::shell_quote(GR_NODE_PROGRAM) + " " +
+                              test::shell_quote(GR_GLTF_VALIDATOR) + " " + test::shell_quote(path) +
+                              " >" + test::shell_quote(out) + " 2>&1";
+  const int status = std::system(command.c_str());
+  ValidatorRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.summary = nlohmann::json::parse(test::read_text(out), nullptr, false);
+  return run;
+}
 
 /// Writes a shared-data garment as a GLB skinned over its source skeleton (each vertex
 /// bound to its nearest joint: the skin is there to carry the skeleton).

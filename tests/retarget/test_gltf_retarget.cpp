@@ -21,26 +21,8 @@
 namespace gr {
 namespace {
 
-/// What the Khronos glTF validator said about a file (its exit code 1 means errors).
-struct ValidatorRun {
-  int exit_code = -1;
-  nlohmann::json summary;
-};
-
-ValidatorRun run_gltf_validator(const std::string& path) {
-  const auto dir = test::fresh_temp_dir("gltf_validator");
-  const std::string out = (dir / "summary.json").string();
-  const std::string command = test::shell_quote(GR_NODE_PROGRAM) + " " +
-                              test::shell_quote(GR_GLTF_VALIDATOR) + " " + test::shell_quote(path) +
-                              " >" + test::shell_quote(out) + " 2>&1";
-  const int status = std::system(command.c_str());
-  ValidatorRun run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  const std::string text = test::read_text(out);
-  INFO(text);
-  run.summary = nlohmann::json::parse(text, nullptr, false);
-  return run;
-}
+using test::run_gltf_validator;
+using test::ValidatorRun;
 
 /// Every joint of `skin` below `joint`, itself included.
 std::vector<bool> subtree(const SkinBinding& skin, int joint) {

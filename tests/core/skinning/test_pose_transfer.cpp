@@ -70,7 +70,8 @@ TEST_CASE("pose transfer turns a sleeve with a two-bone arm, its edges kept", "[
   CHECK(kept > 0.9 * edges);
 }
 
-TEST_CASE("dual quaternions keep a blended elbow's girth where linear blending pinches it", "[skinning][pose]") {
+TEST_CASE("dual quaternions keep a blended elbow's girth where linear blending pinches it",
+          "[skinning][pose]") {
   const BendingArmScene scene = make_bending_arm_scene(90.0);
   const std::vector<Eigen::Isometry3d> motions =
       pose_transfer_motions(arm({2, 0, 0}), arm({1, 1, 0}));
@@ -84,7 +85,8 @@ TEST_CASE("dual quaternions keep a blended elbow's girth where linear blending p
   double dual_radius = 0.0;
   int ring = 0;
   for (Eigen::Index v = 0; v < scene.arm.positions.rows(); ++v) {
-    if (std::abs(scene.arm.positions(v, 0) - 1.0) > 1e-9 || std::abs(scene.arm.positions(v, 2)) > 0.01)
+    if (std::abs(scene.arm.positions(v, 0) - 1.0) > 1e-9 ||
+        std::abs(scene.arm.positions(v, 2)) > 0.01)
       continue;
     // Vertices on the bend's plane side: their distance to the elbow in the xy plane.
     linear_radius += std::hypot(linear(v, 0) - 1.0, linear(v, 1));
