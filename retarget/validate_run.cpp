@@ -116,6 +116,9 @@ ValidateResult run_validate(const ValidateOptions& given) {
       section.push_back(to_json(clips.back()));
     }
   }
+  // Certified means every frame too.
+  for (const ClipFindings& clip : clips)
+    if (clip.crossing_frames() > 0) result.report["certified"] = false;
   StagedFiles outputs;
   if (!options.report.empty()) write_json_file(outputs.stage(options.report), result.report);
   if (!options.marks.empty()) write_marks_obj(outputs.stage(options.marks), validation);
@@ -135,6 +138,10 @@ ValidateResult run_validate(const ValidateOptions& given) {
     result.summary += "; " + clip_summary(clip);
     frames_cross = frames_cross || clip.crossing_frames() > 0;
   }
+  // The files' own pose may be free while frames of a clip cross: the line says so first.
+  if (frames_cross && validation.result.certified())
+    result.summary =
+        "NOT certified (frames of an animation cross), pose as given " + result.summary;
   result.status = !validation.result.certified() || frames_cross ? Outcome::kNotCertified
                   : result.warnings.empty()                      ? Outcome::kCertified
                                                                  : Outcome::kShapeChanged;

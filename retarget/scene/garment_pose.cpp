@@ -1,8 +1,12 @@
 #include "retarget/scene/garment_pose.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
+#include "validate/checks/self_intersections.hpp"
 #include "validate/measure/shape_change.hpp"
 
 namespace gr {
@@ -25,6 +29,23 @@ nlohmann::json to_json(const PoseReport& report) {
           {"edge_change", {{"mean", report.mean_edge_change}, {"p95", report.p95_edge_change}}},
           {"source_body_posed", report.source_body_posed}};
 }
+
+namespace {
+
+/// Self-intersecting face pairs of `after` that `before` (same faces) does not have.
+std::size_t added_crossings(const TriangleMesh& before, const TriangleMesh& after) {
+  std::vector<FacePair> had = find_self_intersecting_face_pairs(before).pairs.pairs;
+  for (FacePair& p : had) p = {std::min(p.first, p.second), std::max(p.first, p.second)};
+  std::sort(had.begin(), had.end());
+  std::size_t added = 0;
+  for (FacePair p : find_self_intersecting_face_pairs(after).pairs.pairs) {
+    p = {std::min(p.first, p.second), std::max(p.first, p.second)};
+    if (!std::binary_search(had.begin(), had.end(), p)) ++added;
+  }
+  return added;
+}
+
+}  // namespace
 
 PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method) {
   PoseReport report;
@@ -54,7 +75,19 @@ PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method) {
       pose_transfer_motions(source, *scene.target_skeleton);
   ObjDocument& document = scene.garment_document;
   const TriangleMesh before = scene.garment.mesh;
-  document.positions = skin_by_motions(document.positions, skin.weights, motions, method);
+  const MatrixX3d posed = skin_by_motions(document.positions, skin.weights, motions, method);
+  // A skin whose weights fold the cloth onto itself would hand the solve crossings that the
+  // input did not have, and that would then pass for the input's own: keep the pose.
+  TriangleMesh after = before;
+  for (std::size_t s = 0; s < scene.garment.sim_to_obj.size(); ++s)
+    after.vertices.row(static_cast<Eigen::Index>(s)) = posed.row(scene.garment.sim_to_obj[s]);
+  const std::size_t added = added_crossings(before, after);
+  if (added > 0) {
+    report.reason = fmt::format(
+        "turned by its skin, the garment would cross itself in {} more face pairs", added);
+    return report;
+  }
+  document.positions = posed;
   for (std::size_t s = 0; s < scene.garment.sim_to_obj.size(); ++s)
     scene.garment.mesh.vertices.row(static_cast<Eigen::Index>(s)) =
         document.positions.row(scene.garment.sim_to_obj[s]);

@@ -39,8 +39,9 @@ nlohmann::json to_json(const PoseReport& report);
 /// (pose_transfer_motions on the skeletons matched from the two skins), by its own skin
 /// weights: its document and simulation positions and the source skeleton move; the
 /// motions are kept in scene.garment_pose, so that a source body of the same skin follows.
-/// A garment without its own skin, an outfit, or skeletons given as files keep their pose
-/// (the report says why).
+/// A garment without its own skin, an outfit, skeletons given as files, or a garment that
+/// its skin would fold into crossings of its own (exact check) keep their pose (the report
+/// says why).
 PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method);
 
 /// `positions` (#P×3, a document of a skinned glTF file) moved by scene.garment_pose, when

@@ -32,9 +32,11 @@ TEST_CASE("validate --animation finds the frames where a skinned sleeve crosses 
   INFO(run.out << run.err);
   CHECK(run.exit_code == 1);
   CHECK_THAT(run.out, Catch::Contains("animation 'bend': 31 frames at 30 fps"));
+  CHECK_THAT(run.out, Catch::StartsWith("NOT certified (frames of an animation cross)"));
   const nlohmann::json report = read_json(dir / "report.json");
   // The sleeve is certified as written: only the played frames cross.
   CHECK(report["counts"]["garment_avatar_intersections"] == 0);
+  CHECK(report["certified"] == false);
   const nlohmann::json& clip = report["animations"].at(0);
   CHECK(clip["clip"] == "bend");
   CHECK(clip["translations"] == "all");
