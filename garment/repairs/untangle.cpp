@@ -55,10 +55,10 @@ struct Pusher {
   Vector3d outward(int face) {
     Vector3d& known = face_outward[static_cast<std::size_t>(face)];
     if (!std::isnan(known.x())) return known;
-    const Vector3d centroid = (start.row(faces(face, 0)) + start.row(faces(face, 1)) +
-                               start.row(faces(face, 2)))
-                                  .transpose() /
-                              3.0;
+    const Vector3d centroid =
+        (start.row(faces(face, 0)) + start.row(faces(face, 1)) + start.row(faces(face, 2)))
+            .transpose() /
+        3.0;
     Vector3d nearest = centroid;
     double best = kInfinity;
     for (Eigen::Index p = 0; p < options.body_points.rows(); ++p) {
@@ -116,8 +116,8 @@ struct Pusher {
       if (deepest[0] < 0.0 && deepest[1] < 0.0) return push;  // every corner shared
       const bool positive =
           deepest[0] < 0.0 ||
-          (deepest[1] >= 0.0 && (deepest[1] < deepest[0] ||
-                                 (deepest[1] == deepest[0] && summed[1] <= summed[0])));
+          (deepest[1] >= 0.0 &&
+           (deepest[1] < deepest[0] || (deepest[1] == deepest[0] && summed[1] <= summed[0])));
       side = positive ? 1 : -1;
     }
     const int s = side > 0 ? 1 : 0;
@@ -200,11 +200,26 @@ bool pair_less(const FacePair& a, const FacePair& b) {
 /// faces it crosses, and per face its box at the current positions.
 class LocalCrossings {
  public:
-  LocalCrossings(const MatrixX3i& faces, const MatrixX3d& X, const std::vector<FacePair>& pairs)
+  /// `reach`: how far any vertex may move from X, so that a face stays in the grid cells
+  /// its box at X grown by it meets.
+  LocalCrossings(const MatrixX3i& faces, const MatrixX3d& X, const std::vector<FacePair>& pairs,
+                 double reach)
       : faces_(faces), partners_(static_cast<std::size_t>(faces.rows())),
         boxes_(static_cast<std::size_t>(faces.rows())) {
     for (const FacePair& p : pairs) add(p);
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) boxes_[static_cast<std::size_t>(f)] = box(X, static_cast<int>(f));
+    double size = 0.0;
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      boxes_[static_cast<std::size_t>(f)] = box(X, static_cast<int>(f));
+      size += boxes_[static_cast<std::size_t>(f)].sizes().maxCoeff();
+    }
+    if (faces.rows() > 0) size /= static_cast<double>(faces.rows());
+    cell_ = std::max(2.0 * (size + reach), 1e-12);
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      Eigen::AlignedBox3d grown = boxes_[static_cast<std::size_t>(f)];
+      grown.min().array() -= reach;
+      grown.max().array() += reach;
+      for_cells(grown, [&](const Cell& c) { grid_[c].push_back(static_cast<int>(f)); });
+    }
   }
 
   /// The crossing pairs with a face in `region` (sorted, unique).
@@ -235,15 +250,25 @@ class LocalCrossings {
     std::vector<int> local = region;
     std::vector<char> in_region(boxes_.size(), 0);
     for (const int f : region) in_region[static_cast<std::size_t>(f)] = 1;
-    for (std::size_t g = 0; g < boxes_.size(); ++g)
-      if (!in_region[g] && boxes_[g].intersects(reach)) local.push_back(static_cast<int>(g));
+    std::vector<char> seen(boxes_.size(), 0);
+    for_cells(reach, [&](const Cell& c) {
+      const auto it = grid_.find(c);
+      if (it == grid_.end()) return;
+      for (const int g : it->second) {
+        const auto k = static_cast<std::size_t>(g);
+        if (in_region[k] || seen[k]) continue;
+        seen[k] = 1;
+        if (boxes_[k].intersects(reach)) local.push_back(g);
+      }
+    });
     std::map<int, int> vertex_id;
     TriangleMesh sub;
     sub.faces.resize(static_cast<Eigen::Index>(local.size()), 3);
     for (std::size_t k = 0; k < local.size(); ++k)
       for (int c = 0; c < 3; ++c)
         sub.faces(static_cast<Eigen::Index>(k), c) =
-            vertex_id.emplace(faces_(local[k], c), static_cast<int>(vertex_id.size())).first->second;
+            vertex_id.emplace(faces_(local[k], c), static_cast<int>(vertex_id.size()))
+                .first->second;
     sub.vertices.resize(static_cast<Eigen::Index>(vertex_id.size()), 3);
     for (const auto& [v, id] : vertex_id) sub.vertices.row(id) = X.row(v);
     std::vector<FacePair> out;
@@ -271,6 +296,19 @@ class LocalCrossings {
   }
 
  private:
+  using Cell = std::array<long, 3>;
+  template <typename Visit>
+  void for_cells(const Eigen::AlignedBox3d& b, Visit visit) const {
+    Cell lo{}, hi{};
+    for (int k = 0; k < 3; ++k) {
+      lo[static_cast<std::size_t>(k)] = static_cast<long>(std::floor(b.min()[k] / cell_));
+      hi[static_cast<std::size_t>(k)] = static_cast<long>(std::floor(b.max()[k] / cell_));
+    }
+    for (long i = lo[0]; i <= hi[0]; ++i)
+      for (long j = lo[1]; j <= hi[1]; ++j)
+        for (long k = lo[2]; k <= hi[2]; ++k) visit(Cell{i, j, k});
+  }
+
   Eigen::AlignedBox3d box(const MatrixX3d& X, int f) const {
     Eigen::AlignedBox3d b;
     for (int k = 0; k < 3; ++k) b.extend(Vector3d(X.row(faces_(f, k)).transpose()));
@@ -290,6 +328,8 @@ class LocalCrossings {
   const MatrixX3i& faces_;
   std::vector<std::vector<int>> partners_;
   std::vector<Eigen::AlignedBox3d> boxes_;
+  double cell_ = 1.0;
+  std::map<Cell, std::vector<int>> grid_;  ///< faces by the cells their reach meets
 };
 
 /// How much a set of crossing pairs crosses: how many, and the pushes they need in all.
@@ -315,7 +355,8 @@ bool contains(const std::vector<FacePair>& sorted, const FacePair& p) {
 const char* to_string(TangleLeft reason) {
   switch (reason) {
     case TangleLeft::kDegenerate: return "a face of the pair has no area";
-    case TangleLeft::kBudget: return "undoing it would move a vertex beyond the displacement budget";
+    case TangleLeft::kBudget:
+      return "undoing it would move a vertex beyond the displacement budget";
     case TangleLeft::kPinned: return "the vertices it would move are held (split edge copies)";
     case TangleLeft::kAdded: return "made by a push that undid more crossings than it made";
     case TangleLeft::kStalled: break;
@@ -348,15 +389,15 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
   if (input.empty()) return out;
 
   const MatrixX3i& F = garment.faces;
-  Pusher pusher{F, options,
-                std::vector<Vector3d>(face_count, Vector3d::Constant(std::nan(""))),
+  Pusher pusher{F, options, std::vector<Vector3d>(face_count, Vector3d::Constant(std::nan(""))),
                 garment.vertices};
   MatrixX3d X = garment.vertices;
   std::vector<std::vector<int>> faces_of(n);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) faces_of[static_cast<std::size_t>(F(f, k))].push_back(static_cast<int>(f));
+    for (int k = 0; k < 3; ++k)
+      faces_of[static_cast<std::size_t>(F(f, k))].push_back(static_cast<int>(f));
   const std::vector<std::vector<int>> neighbours = vertex_neighbours(garment);
-  LocalCrossings crossings(F, X, input);
+  LocalCrossings crossings(F, X, input, options.max_displacement);
   std::vector<char> at_budget(n, 0);
   const auto round_to_lattice = [&](Vector3d x) {
     if (options.lattice > 0.0)
@@ -376,6 +417,17 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
   // A move of some vertices (a displacement each), spread `rings` edge rings around them
   // (ring k going 1 - k / (rings + 1) of their way), kept when the crossings of the faces it
   // moves, checked exactly, got fewer or shallower.
+  // Per face, the count of pushes kept when it last moved; per pair, when it was last tried
+  // in vain: a pair is tried again only once something around it moved.
+  std::vector<int> changed_at(face_count, 0);
+  std::map<std::pair<int, int>, int> tried_at;
+  const auto moved_since = [&](const FacePair& p, int since) {
+    for (const int f : {p.first, p.second})
+      for (int k = 0; k < 3; ++k)
+        for (const int g : faces_of[static_cast<std::size_t>(F(f, k))])
+          if (changed_at[static_cast<std::size_t>(g)] > since) return true;
+    return false;
+  };
   const auto try_move = [&](std::map<int, Vector3d> move, int rings) {
     std::vector<int> front;
     for (const auto& entry : move) front.push_back(entry.first);
@@ -422,6 +474,7 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     crossings.update(trial, region, after);
     X = std::move(trial);
     ++out.pushes;
+    for (const int f : region) changed_at[static_cast<std::size_t>(f)] = out.pushes;
     return true;
   };
 
@@ -437,6 +490,8 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     bool progress = false;
     for (const auto& [depth, pair] : order) {
       if (!crossings.crosses(pair) || !(depth <= 2.0 * options.max_displacement)) continue;
+      const auto last = tried_at.find({pair.first, pair.second});
+      if (last != tried_at.end() && !moved_since(pair, last->second)) continue;
       // One face's corners across the other's plane, that face staying (the contour then
       // shrinks into the region on the wrong side, as a whole region push would), else both
       // faces going half the way.
@@ -458,6 +513,7 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
         if (kept) break;
       }
       progress |= kept;
+      if (!kept) tried_at[{pair.first, pair.second}] = out.pushes;
     }
     if (!progress) break;
     pending.clear();
@@ -534,9 +590,9 @@ double resolved_share(const UntangleReport& report) {
 nlohmann::json to_json(const UntangleReport& report) {
   nlohmann::json left = nlohmann::json::array();
   for (std::size_t k = 0; k < report.left_document_pairs.size(); ++k)
-    left.push_back({{"faces",
-                     {report.left_document_pairs[k].first, report.left_document_pairs[k].second}},
-                    {"reason", report.left_reasons[k]}});
+    left.push_back(
+        {{"faces", {report.left_document_pairs[k].first, report.left_document_pairs[k].second}},
+         {"reason", report.left_reasons[k]}});
   return {{"pairs", report.pairs},
           {"resolved", report.resolved},
           {"left", report.left},

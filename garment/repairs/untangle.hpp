@@ -62,12 +62,12 @@ struct Untangled {
   std::vector<FacePair> remaining;  ///< pairs still crossing (first < second), sorted
   /// The pairs still crossing, with why: the input's first, then those the untangle made.
   std::vector<LeftCrossing> left;
-  int pairs_before = 0;             ///< crossing pairs of the input
-  int resolved = 0;                 ///< of those, the pairs that no longer cross
-  int added = 0;                    ///< pairs crossing at the end that did not at the start
-  int pushes = 0;                   ///< pushes kept
-  int moved_vertices = 0;           ///< vertices that moved
-  double max_displacement = 0.0;    ///< largest vertex move (the garment's units)
+  int pairs_before = 0;           ///< crossing pairs of the input
+  int resolved = 0;               ///< of those, the pairs that no longer cross
+  int added = 0;                  ///< pairs crossing at the end that did not at the start
+  int pushes = 0;                 ///< pushes kept
+  int moved_vertices = 0;         ///< vertices that moved
+  double max_displacement = 0.0;  ///< largest vertex move (the garment's units)
 };
 
 /// Undoes the crossings `pairs` (exact, as find_self_intersecting_face_pairs gives them on
