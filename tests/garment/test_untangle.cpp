@@ -107,8 +107,7 @@ TEST_CASE("Untangle: layers crossing at a hem part inner in, outer out", "[untan
   CHECK(moved[1] > 0.0);
 }
 
-TEST_CASE("Untangle: a strap right through a band wall is left, with its reason",
-          "[untangle]") {
+TEST_CASE("Untangle: a strap right through a band wall is left, with its reason", "[untangle]") {
   const TangledGarment t = make_strap_through_band(0.0, true);
   const std::vector<FacePair> pairs = crossings(t.garment);
   REQUIRE(!pairs.empty());

@@ -47,7 +47,8 @@ TriangleMesh layer_of(const TangledGarment& t, int layer) {
   for (std::size_t v = 0; v < vertices.size(); ++v)
     mesh.vertices.row(static_cast<Eigen::Index>(v)) = vertices[v];
   mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) mesh.faces.row(static_cast<Eigen::Index>(f)) = faces[f];
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    mesh.faces.row(static_cast<Eigen::Index>(f)) = faces[f];
   return mesh;
 }
 
@@ -97,10 +98,11 @@ TEST_CASE("untangle end to end: layers crossing at a hem are untangled against e
   write_obj((dir / "outer.obj").string(), outer);
   write_all_no_fit(dir / "inner.no-fit.txt", inner.vertices.rows());
   write_all_no_fit(dir / "outer.no-fit.txt", outer.vertices.rows());
-  write_obj((dir / "body.obj").string(), test::translated(test::capsule_body(0.25, 0.6), {0, 0, 0.35}));
+  write_obj((dir / "body.obj").string(),
+            test::translated(test::capsule_body(0.25, 0.6), {0, 0, 0.35}));
   // Given outer first: the run's own order (measured on the source body) puts it outside.
-  RetargetOptions options = test::quiet_options((dir / "outer.obj").string(),
-                                                (dir / "body.obj").string(), dir / "out");
+  RetargetOptions options =
+      test::quiet_options((dir / "outer.obj").string(), (dir / "body.obj").string(), dir / "out");
   options.inputs.no_fit = (dir / "outer.no-fit.txt").string();
   options.inputs.more_garments.push_back(
       {(dir / "inner.obj").string(), "", (dir / "inner.no-fit.txt").string()});
@@ -124,20 +126,21 @@ TEST_CASE("untangle end to end: layers crossing at a hem are untangled against e
   const MatrixX3d written_outer = read_obj((dir / "out" / "outer.obj").string()).positions;
   REQUIRE(written_outer.rows() == outer.vertices.rows());
   for (Eigen::Index v = 0; v < outer.vertices.rows(); ++v)
-    CHECK(written_outer.row(v).head<2>().norm() >=
-          outer.vertices.row(v).head<2>().norm() - 1e-9);
+    CHECK(written_outer.row(v).head<2>().norm() >= outer.vertices.row(v).head<2>().norm() - 1e-9);
 }
 
-TEST_CASE("untangle end to end: a strap through a band wall stays, listed, and nothing new "
-          "crosses",
-          "[untangle][end-to-end][inherited]") {
+TEST_CASE(
+    "untangle end to end: a strap through a band wall stays, listed, and nothing new "
+    "crosses",
+    "[untangle][end-to-end][inherited]") {
   TriangleMesh garment = make_strap_through_band(0.0, true).garment;
   const std::filesystem::path dir = test::fresh_temp_dir("untangle_strap_wall");
   write_obj((dir / "garment.obj").string(), garment);
   write_all_no_fit(dir / "no-fit.txt", garment.vertices.rows());
-  write_obj((dir / "body.obj").string(), test::translated(test::capsule_body(0.15, 0.3), {0, 0, 0.06}));
-  RetargetOptions options = test::quiet_options((dir / "garment.obj").string(),
-                                                (dir / "body.obj").string(), dir / "out");
+  write_obj((dir / "body.obj").string(),
+            test::translated(test::capsule_body(0.15, 0.3), {0, 0, 0.06}));
+  RetargetOptions options =
+      test::quiet_options((dir / "garment.obj").string(), (dir / "body.obj").string(), dir / "out");
   options.inputs.no_fit = (dir / "no-fit.txt").string();
   options.overrides.set("voxel_size", test::kSyntheticVoxelSize);
   options.overrides.set("max_newton_iterations", test::kSyntheticNewtonCap);
