@@ -21,7 +21,7 @@ struct PrepareOptions {
   double thinnest_barrier = 0.0;
   /// The layers of an outfit inside to outside (resolve_layer_order); empty: measured on
   /// the source, for the untangle to know which way a crossing between layers goes.
-  std::vector<int> layer_order;
+  std::vector<int> layer_order{};
 };
 
 struct PrepareOutput {
