@@ -19,11 +19,18 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// How far around the pushed vertices a push is spread, in edge rings, tried in turn.
 constexpr int kFadeRings[] = {0, 1, 3};
+/// How far, in edge rings, a push may take the region behind the corners it pushes, and
+/// how much deeper than their push the region's vertices may lie.
+constexpr int kRegionRings = 4;
+constexpr double kRegionDepth = 4.0;
 
 /// The push that undoes one crossing pair.
 struct PairPush {
   double depth = kInfinity;  ///< the relative move it takes (the smaller option's)
   std::vector<std::pair<int, Vector3d>> moves;
+  /// The plane the movers go across (a point, its unit normal) and the side they are on.
+  Vector3d plane_point = Vector3d::Zero(), plane_normal = Vector3d::Zero();
+  int side = 0;
   TangleLeft blocked = TangleLeft::kStalled;  ///< why there is none, when moves is empty
 };
 
@@ -122,6 +129,9 @@ struct Pusher {
     }
     const int s = side > 0 ? 1 : 0;
     if (deepest[s] < 0.0) return push;  // nothing on that side
+    push.plane_point = p0;
+    push.plane_normal = n;
+    push.side = side;
     bool plane_moves = false;
     for (std::size_t j = 0; j < 3; ++j)
       plane_moves |= !alone && !plane_shared[j] && !pinned(plane[j]);
@@ -505,7 +515,34 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
             const PairPush& push = both[static_cast<std::size_t>(which)];
             if (push.moves.empty() || !(push.depth <= options.max_displacement)) continue;
             std::map<int, Vector3d> move;
-            for (const auto& [v, d] : push.moves) move[v] += d;
+            for (const auto& [v, d] : push.moves)
+              move.try_emplace(v, Vector3d::Zero()).first->second += d;
+            if (alone && rings == 0) {
+              // The region behind the pushed corners: their neighbours on the same side of
+              // the plane (up to kRegionRings rings) pushed across it too, each its own way.
+              std::vector<int> front;
+              for (const auto& entry : move) front.push_back(entry.first);
+              std::map<int, Vector3d> region = move;
+              for (int ring = 0; ring < kRegionRings && !front.empty(); ++ring) {
+                std::vector<int> next;
+                for (const int v : front)
+                  for (const int u : neighbours[static_cast<std::size_t>(v)]) {
+                    if (region.count(u) || pusher.pinned(u)) continue;
+                    const double d =
+                        push.side * push.plane_normal.dot(X.row(u).transpose() - push.plane_point);
+                    if (!(d > 0.0) || d > kRegionDepth * push.depth ||
+                        d + options.separation > options.max_displacement)
+                      continue;
+                    region[u] = -push.side * (d + options.separation) * push.plane_normal;
+                    next.push_back(u);
+                  }
+                front = std::move(next);
+              }
+              if (region.size() > move.size() && try_move(region, 1)) {
+                kept = true;
+                break;
+              }
+            }
             if ((kept = try_move(std::move(move), rings))) break;
           }
           if (kept) break;
