@@ -19,7 +19,8 @@ int append_grid(TriangleMesh& mesh, int rows, int columns, bool closed,
   const auto first_face = static_cast<int>(mesh.faces.rows());
   mesh.vertices.conservativeResize(first + (rows + 1) * across, 3);
   for (int i = 0; i <= rows; ++i)
-    for (int j = 0; j < across; ++j) mesh.vertices.row(first + i * across + j) = at(i, j).transpose();
+    for (int j = 0; j < across; ++j)
+      mesh.vertices.row(first + i * across + j) = at(i, j).transpose();
   mesh.faces.conservativeResize(first_face + 2 * rows * columns, 3);
   int f = first_face;
   const auto id = [&](int i, int j) { return first + i * across + (j % across); };
@@ -40,8 +41,7 @@ double bump(double r, double radius) {
 
 MatrixX3d axis_points(double z0, double z1, int count) {
   MatrixX3d points(count, 3);
-  for (int k = 0; k < count; ++k)
-    points.row(k) << 0.0, 0.0, z0 + (z1 - z0) * k / (count - 1);
+  for (int k = 0; k < count; ++k) points.row(k) << 0.0, 0.0, z0 + (z1 - z0) * k / (count - 1);
   return points;
 }
 
@@ -107,7 +107,8 @@ TangledGarment make_layers_crossing_at_hem(double depth) {
       return Vector3d(r * std::cos(a), r * std::sin(a), kHeight * i / kRows);
     };
   };
-  const int inner = append_grid(t.garment, kRows, kAround, true, tube(0.3, [](int) { return 0.0; }));
+  const int inner =
+      append_grid(t.garment, kRows, kAround, true, tube(0.3, [](int) { return 0.0; }));
   // The outer tube starts a little higher, its lowest two rings tucked under the inner one.
   const int outer = append_grid(t.garment, kRows, kAround, true, [&](int i, int j) {
     Vector3d x = tube(0.32, [&](int row) { return row < 2 ? 0.02 + depth : 0.0; })(i, j);
