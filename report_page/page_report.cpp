@@ -154,6 +154,10 @@ RunPageReport read_run(const Part<nlohmann::json>& r) {
     return ReportEase{p.text("fit"), p.text("source"), p.count("measured_vertices"),
                       p.number("median_ratio"), p.number("within_25_percent")};
   });
+  run.untangle = optional_part(r, "untangle", [](const P& p) {
+    return ReportUntangle{p.count("pairs"), p.count("resolved"), p.count("remaining"),
+                          p.number("max_displacement")};
+  });
   run.inherited_crossings = optional_part(r, "inherited_crossings", [](const P& p) {
     return ReportInheritedCrossings{p.count("pairs"), p.count("still_crossing"),
                                     p.count("attached_pieces")};

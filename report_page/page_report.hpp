@@ -61,6 +61,14 @@ struct ReportInheritedCrossings {
   int attached_pieces = 0;
 };
 
+/// report.json "untangle": the input's crossings pushed apart before the solve.
+struct ReportUntangle {
+  int pairs = 0;
+  int resolved = 0;
+  int remaining = 0;
+  std::optional<double> max_displacement;  ///< over the garment's bounding-box diagonal
+};
+
 /// report.json "split_non_manifold_edges".
 struct ReportSplitEdges {
   int edges = 0;
@@ -105,6 +113,7 @@ struct RunPageReport {
   std::optional<ReportInflate> inflate;
   std::optional<ReportModelled> modelled;
   std::optional<ReportEase> ease;
+  std::optional<ReportUntangle> untangle;
   std::optional<ReportInheritedCrossings> inherited_crossings;
   std::optional<ReportSplitEdges> split_non_manifold_edges;
   std::optional<ReportPiercedFaces> pierced_faces;

@@ -104,12 +104,20 @@ std::optional<double> certified_clearance(const std::optional<CertificatePageRep
 
 /// What the run repaired or kept of the input as given; no section when nothing.
 std::optional<Section> repairs_section(const RunPageReport& r) {
+  const auto untangle = r.untangle.value_or(ReportUntangle{});
   const auto inherited = r.inherited_crossings.value_or(ReportInheritedCrossings{});
   const auto split = r.split_non_manifold_edges.value_or(ReportSplitEdges{});
   const auto pierced = r.pierced_faces.value_or(ReportPiercedFaces{});
-  if (inherited.pairs <= 0 && split.edges <= 0 && pierced.left_out_of_contact.empty())
+  if (untangle.pairs <= 0 && inherited.pairs <= 0 && split.edges <= 0 &&
+      pierced.left_out_of_contact.empty())
     return std::nullopt;
   Section repairs{"Input as given", {}, ""};
+  if (untangle.pairs > 0)
+    repairs.rows.push_back(
+        {"self-crossing face pairs pushed apart before the solve",
+         fmt::format("{} of {}, {} crossing after it; largest move {:.3g} of the diagonal",
+                     untangle.resolved, untangle.pairs, untangle.remaining,
+                     untangle.max_displacement.value_or(0.0))});
   if (inherited.pairs > 0)
     repairs.rows.push_back(
         {"self-crossing face pairs kept (inherited)",

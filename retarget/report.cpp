@@ -210,6 +210,7 @@ nlohmann::json to_json(const RetargetReport& r) {
        "distance to the avatar over the garment's median edge ratio, against its distance to "
        "the source body; per_vertex_ratio in OBJ vertex order, null where not measured"}};
   report["split_non_manifold_edges"] = to_json(r.repairs.non_manifold);
+  if (r.repairs.untangle.pairs > 0) report["untangle"] = to_json(r.repairs.untangle);
   report["inherited_crossings"] = to_json(r.repairs.crossings);
   report["pierced_faces"] = to_json(r.repairs.pierced);
   if (r.outfit) report["outfit"] = to_json(*r.outfit, r.certify.shape_thresholds);

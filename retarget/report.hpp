@@ -13,6 +13,7 @@
 #include "garment/repairs/inherited_crossings.hpp"
 #include "garment/repairs/non_manifold_edges.hpp"
 #include "garment/repairs/pierced_faces.hpp"
+#include "garment/repairs/untangle.hpp"
 #include "retarget/parameters.hpp"
 #include "retarget/scene/garment_pose.hpp"
 #include "retarget/scene/inferred_inputs.hpp"
@@ -55,6 +56,7 @@ struct EaseReport {
 /// The input repairs (the prepare stage), each a section of report.json of its own.
 struct RepairsReport {
   NonManifoldReport non_manifold;  ///< `split_non_manifold_edges`
+  UntangleReport untangle;         ///< `untangle`: the input's crossings pushed apart
   InheritedReport crossings;       ///< `inherited_crossings`, with the pieces attached
   PiercedReport pierced;  ///< `pierced_faces` (left out in the shrink, opened in the write)
 };

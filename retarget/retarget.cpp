@@ -201,8 +201,9 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   Scene& scene = read.scene;
   const std::vector<int> given_order = resolve_layer_order(scene, options.layer_order);
   mark_skirts(scene, options.skirt, options.skirt_layers);
-  const PrepareOutput prepared = run_prepare(
-      {scene, options.inputs}, {std::min(parameters.dhat, parameters.fit_support())}, progress);
+  const PrepareOutput prepared =
+      run_prepare({scene, options.inputs},
+                  {std::min(parameters.dhat, parameters.fit_support()), given_order}, progress);
   const NormalizedScene& normalized = prepared.normalized;
   const InferOutput inferred = run_infer(
       {scene, normalized, options.inputs, read.shrink_mode},

@@ -1,6 +1,7 @@
 #include "core/candidates/candidates.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -346,11 +347,15 @@ Candidates find_swept_candidates(const ContactMesh& mesh, const Eigen::Ref<const
   return CandidateFinder(mesh).find_swept(V0, V1, inflation_radius);
 }
 
-std::vector<std::array<int, 5>> tangled_pairs_closer_than(
-    const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap) {
-  const std::vector<int>& tangles = mesh.garment_tangles;
-  if (tangles.empty() || !mesh.self_contact) return {};
-  // The garment alone, every self pair searched.
+namespace {
+
+/// The self pairs of the garment alone closer than `gap` at `garment` for which `keep`
+/// holds, as sorted keys.
+template <typename KeepPointTriangle, typename KeepEdgeEdge>
+std::vector<std::array<int, 5>> self_pairs_closer_than(const ContactMesh& mesh,
+                                                       const Eigen::Ref<const MatrixX3d>& garment,
+                                                       double gap, KeepPointTriangle keep_pt,
+                                                       KeepEdgeEdge keep_ee) {
   ContactMesh self = mesh;
   self.avatar_vertex_count = 0;
   self.avatar_faces.resize(0, 3);
@@ -358,6 +363,84 @@ std::vector<std::array<int, 5>> tangled_pairs_closer_than(
   self.cull_fold_free = false;
   self.unmodelled_self_pairs.clear();
   const Candidates near = find_candidates(self, garment, gap);
+  const auto at = [&](int v) -> Vector3d { return garment.row(v).transpose(); };
+  const double gap_sq = gap * gap;
+  std::vector<std::array<int, 5>> keys;
+  for (const PointTriangleCandidate& c : near.point_triangle)
+    if (keep_pt(c) && point_triangle_distance_sq(at(c.point), at(c.triangle[0]), at(c.triangle[1]),
+                                                 at(c.triangle[2])) < gap_sq)
+      keys.push_back(self_pair_key(c));
+  for (const EdgeEdgeCandidate& c : near.edge_edge)
+    if (keep_ee(c) && edge_edge_distance_sq(at(c.edge_a[0]), at(c.edge_a[1]), at(c.edge_b[0]),
+                                            at(c.edge_b[1])) < gap_sq)
+      keys.push_back(self_pair_key(c));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 5>> crossing_pairs_closer_than(
+    const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap,
+    const std::vector<std::array<int, 2>>& same_place) {
+  const std::vector<std::array<int, 2>>& crossing = mesh.garment_crossing_faces;
+  if ((crossing.empty() && same_place.empty()) || !mesh.self_contact) return {};
+  std::vector<int> place(static_cast<std::size_t>(mesh.garment_vertex_count));
+  std::iota(place.begin(), place.end(), 0);
+  for (const auto& [a, b] : same_place) {
+    const int root =
+        std::min(place[static_cast<std::size_t>(a)], place[static_cast<std::size_t>(b)]);
+    place[static_cast<std::size_t>(a)] = place[static_cast<std::size_t>(b)] = root;
+  }
+  const auto tied = [&](std::initializer_list<int> first, std::initializer_list<int> second) {
+    if (same_place.empty()) return false;
+    for (const int u : first)
+      for (const int v : second)
+        if (place[static_cast<std::size_t>(u)] == place[static_cast<std::size_t>(v)]) return true;
+    return false;
+  };
+  std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(mesh.garment_vertex_count));
+  for (Eigen::Index f = 0; f < mesh.garment_faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      faces_of[static_cast<std::size_t>(mesh.garment_faces(f, k))].push_back(static_cast<int>(f));
+  const auto holding = [&](std::initializer_list<int> vertices) {
+    std::vector<int> faces;
+    for (const int f : faces_of[static_cast<std::size_t>(*vertices.begin())]) {
+      bool all = true;
+      for (const int v : vertices)
+        all = all && (mesh.garment_faces(f, 0) == v || mesh.garment_faces(f, 1) == v ||
+                      mesh.garment_faces(f, 2) == v);
+      if (all) faces.push_back(f);
+    }
+    return faces;
+  };
+  const auto all_cross = [&](const std::vector<int>& a, const std::vector<int>& b) {
+    if (a.empty() || b.empty()) return false;
+    for (const int f : a)
+      for (const int g : b)
+        if (!std::binary_search(crossing.begin(), crossing.end(),
+                                std::array<int, 2>{std::min(f, g), std::max(f, g)}))
+          return false;
+    return true;
+  };
+  return self_pairs_closer_than(
+      mesh, garment, gap,
+      [&](const PointTriangleCandidate& c) {
+        return tied({c.point}, {c.triangle[0], c.triangle[1], c.triangle[2]}) ||
+               all_cross(holding({c.point}),
+                         holding({c.triangle[0], c.triangle[1], c.triangle[2]}));
+      },
+      [&](const EdgeEdgeCandidate& c) {
+        return tied({c.edge_a[0], c.edge_a[1]}, {c.edge_b[0], c.edge_b[1]}) ||
+               all_cross(holding({c.edge_a[0], c.edge_a[1]}), holding({c.edge_b[0], c.edge_b[1]}));
+      });
+}
+
+std::vector<std::array<int, 5>> tangled_pairs_closer_than(
+    const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap) {
+  const std::vector<int>& tangles = mesh.garment_tangles;
+  if (tangles.empty() || !mesh.self_contact) return {};
   const auto one_tangle = [&](std::initializer_list<int> vertices) {
     const int first = tangles[static_cast<std::size_t>(*vertices.begin())];
     if (first < 0) return false;
@@ -365,22 +448,14 @@ std::vector<std::array<int, 5>> tangled_pairs_closer_than(
       if (tangles[static_cast<std::size_t>(v)] != first) return false;
     return true;
   };
-  const auto at = [&](int v) -> Vector3d { return garment.row(v).transpose(); };
-  const double gap_sq = gap * gap;
-  std::vector<std::array<int, 5>> keys;
-  for (const PointTriangleCandidate& c : near.point_triangle)
-    if (one_tangle({c.point, c.triangle[0], c.triangle[1], c.triangle[2]}) &&
-        point_triangle_distance_sq(at(c.point), at(c.triangle[0]), at(c.triangle[1]),
-                                   at(c.triangle[2])) < gap_sq)
-      keys.push_back(self_pair_key(c));
-  for (const EdgeEdgeCandidate& c : near.edge_edge)
-    if (one_tangle({c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]}) &&
-        edge_edge_distance_sq(at(c.edge_a[0]), at(c.edge_a[1]), at(c.edge_b[0]), at(c.edge_b[1])) <
-            gap_sq)
-      keys.push_back(self_pair_key(c));
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  return keys;
+  return self_pairs_closer_than(
+      mesh, garment, gap,
+      [&](const PointTriangleCandidate& c) {
+        return one_tangle({c.point, c.triangle[0], c.triangle[1], c.triangle[2]});
+      },
+      [&](const EdgeEdgeCandidate& c) {
+        return one_tangle({c.edge_a[0], c.edge_a[1], c.edge_b[0], c.edge_b[1]});
+      });
 }
 
 }  // namespace gr

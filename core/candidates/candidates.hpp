@@ -135,4 +135,17 @@ Candidates find_swept_candidates(const ContactMesh& mesh, const Eigen::Ref<const
 std::vector<std::array<int, 5>> tangled_pairs_closer_than(
     const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap);
 
+/// The self pairs (sharing no vertex) closer than `gap` at the garment positions `garment`
+/// (#garment vertices×3) every face pair of which is listed in
+/// mesh.garment_crossing_faces: for a point and a triangle, each face holding the point
+/// with the triangle's face; for two edges, each face holding one with each face holding
+/// the other. Leaving out only these keeps every face pair that does not cross fully
+/// modelled. Vertices tied in one place (`same_place`, pairs of garment vertices such as a
+/// split edge's copy and its original) count as one: pairs that hold both sides of a tie
+/// touch as neighbours do and are left out too. Sorted self_pair_key values, for
+/// ContactMesh::unmodelled_self_pairs.
+std::vector<std::array<int, 5>> crossing_pairs_closer_than(
+    const ContactMesh& mesh, const Eigen::Ref<const MatrixX3d>& garment, double gap,
+    const std::vector<std::array<int, 2>>& same_place = {});
+
 }  // namespace gr

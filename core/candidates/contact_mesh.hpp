@@ -26,11 +26,15 @@ struct ContactMesh {
   /// Per garment vertex, the tangle it belongs to (-1: none): where the garment crosses
   /// itself as given, the crossing faces and their neighbourhood. Empty: no tangle.
   std::vector<int> garment_tangles;
-  /// Self pairs that are not modelled (sorted self_pair_key values): pairs of one tangle
-  /// that touch, or all but touch, at the start (tangled_pairs_closer_than). Every other
-  /// pair stays apart under the barrier and CCD, and no crossing face pair can appear or
-  /// go without one of its point–triangle or edge–edge pairs meeting: the crossings the
-  /// garment has as given are kept as they are, and none is added.
+  /// Garment face pairs (rows of garment_faces, first < second, sorted) that cross as the
+  /// solve starts: a crossing the input came with and the untangle left.
+  std::vector<std::array<int, 2>> garment_crossing_faces;
+  /// Self pairs that are not modelled (sorted self_pair_key values): pairs that touch, or
+  /// all but touch, at the start and every face pair of which crosses then
+  /// (crossing_pairs_closer_than). Every other pair stays apart under the barrier and CCD,
+  /// and no face pair can start crossing without one of its point–triangle or edge–edge
+  /// pairs meeting, all of which are modelled when it does not cross at the start: the
+  /// crossings the garment starts with are kept as they are, and none is added.
   std::vector<std::array<int, 5>> unmodelled_self_pairs;
   /// Per garment vertex, garment edge (rows of garment_edges) and garment face: whether it
   /// takes part in garment–avatar pairs (leave_out_of_avatar_contact). Empty: all do.

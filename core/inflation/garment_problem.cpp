@@ -32,8 +32,8 @@ const GarmentScene& checked(const GarmentScene& scene, GarmentProblem::Stage sta
   return scene;
 }
 
-/// Self pairs of a tangle closer than this fraction of dhat at the start are not modelled:
-/// their barrier would be unbounded or all but. Any pair further apart is.
+/// Self pairs of crossing faces closer than this fraction of dhat at the start are not
+/// modelled: their barrier would be unbounded or all but. Any pair further apart is.
 constexpr double kTouchingGap = 1e-3;
 
 /// hold_back: rounds of per-vertex CCD, and the share of a vertex's CCD bound it keeps in
@@ -46,8 +46,10 @@ ContactMesh contact_mesh_for(const GarmentScene& scene, const RetargetParameters
                                         scene.avatar_faces_used);
   mesh.cull_fold_free = !parameters.self_contact_everywhere;
   mesh.garment_tangles = scene.garment_tangles;
-  mesh.unmodelled_self_pairs =
-      tangled_pairs_closer_than(mesh, scene.garment.vertices, kTouchingGap * parameters.dhat);
+  mesh.garment_crossing_faces = scene.garment_crossing_faces;
+  std::sort(mesh.garment_crossing_faces.begin(), mesh.garment_crossing_faces.end());
+  mesh.unmodelled_self_pairs = crossing_pairs_closer_than(
+      mesh, scene.garment.vertices, kTouchingGap * parameters.dhat, scene.ties);
   mesh.leave_out_of_avatar_contact(scene.faces_without_avatar_contact);
   return mesh;
 }

@@ -46,9 +46,12 @@ struct GarmentScene {
   /// Per garment vertex, the distance from the avatar the fit holds it at (normalized
   /// units, FitEnergy's offsets); empty: the tight fit, onto the avatar.
   std::vector<double> fit_offsets;
-  /// Per garment vertex, its tangle (ContactMesh::garment_tangles): self pairs inside one
-  /// that touch at the start are not modelled. Empty: the garment does not cross itself.
+  /// Per garment vertex, its tangle (ContactMesh::garment_tangles): the neighbourhood of
+  /// the crossings the garment starts with. Empty: the garment does not cross itself.
   std::vector<int> garment_tangles;
+  /// Garment face pairs that cross at the start (ContactMesh::garment_crossing_faces): self
+  /// pairs touching at the start whose face pairs all cross are not modelled.
+  std::vector<std::array<int, 2>> garment_crossing_faces;
   /// Garment faces left out of garment–avatar contact (ContactMesh::
   /// leave_out_of_avatar_contact): faces the avatar passes through as given.
   std::vector<int> faces_without_avatar_contact;

@@ -52,8 +52,11 @@ Normalization normalize_scene(const Scene& scene);
 /// A scene's meshes and skeletons in normalized scene units.
 struct NormalizedScene {
   Normalization normalization;
-  double lattice = 0.0;                     ///< coordinates are multiples of this (0: not rounded)
-  TriangleMesh garment;                     ///< welded garment, #Vg×3 / #Fg×3
+  double lattice = 0.0;  ///< coordinates are multiples of this (0: not rounded)
+  TriangleMesh garment;  ///< welded garment, #Vg×3 / #Fg×3
+  /// The garment's positions before the prepare stage untangled it (#Vg×3), which the
+  /// change of shape is measured from; empty: garment.vertices are as given.
+  MatrixX3d garment_as_given;
   TriangleMesh avatar;                      ///< welded avatar, #Va×3 / #Fa×3
   std::optional<Skeleton> source_skeleton;  ///< in the garment's normalized frame
   std::optional<Skeleton> target_skeleton;  ///< in the avatar's normalized frame

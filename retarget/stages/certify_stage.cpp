@@ -100,7 +100,12 @@ CertifyOutput run_certify(const CertifyInput& input, const CertifyOptions& optio
                           Progress& progress) {
   CertifyOutput out;
   CertifyReport& report = out.report;
-  report.shape = measure_shape_change(input.normalized.garment, input.garment);
+  // The change of shape counts the untangle's too: measured from the garment as given.
+  const NormalizedScene& normalized = input.normalized;
+  const TriangleMesh as_given{normalized.garment_as_given.rows() > 0 ? normalized.garment_as_given
+                                                                     : normalized.garment.vertices,
+                              normalized.garment.faces};
+  report.shape = measure_shape_change(as_given, input.garment);
   report.shape_thresholds =
       applied_shape_thresholds(options.shape_thresholds, input.scene.source_skeleton.has_value());
   progress.log("shape",
@@ -146,8 +151,7 @@ CertifyOutput run_certify(const CertifyInput& input, const CertifyOptions& optio
     for (std::size_t k = 0; k < layers; ++k) {
       const GarmentLayer& layer = input.scene.layers[k];
       const TriangleMesh before =
-          layer_mesh(input.normalized.garment, input.normalized.garment.vertices, face_layer,
-                     static_cast<int>(k));
+          layer_mesh(as_given, as_given.vertices, face_layer, static_cast<int>(k));
       const TriangleMesh after =
           layer_mesh(input.normalized.garment, input.garment, face_layer, static_cast<int>(k));
       out.layer_shapes.push_back(measure_shape_change(before, after.vertices));

@@ -19,6 +19,9 @@ struct PrepareOptions {
   /// The thinnest barrier of the run (normalized units): coordinates are rounded to a
   /// lattice well below it (lattice_spacing).
   double thinnest_barrier = 0.0;
+  /// The layers of an outfit inside to outside (resolve_layer_order); empty: measured on
+  /// the source, for the untangle to know which way a crossing between layers goes.
+  std::vector<int> layer_order{};
 };
 
 struct PrepareOutput {

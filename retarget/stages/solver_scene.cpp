@@ -34,6 +34,9 @@ SolverScene make_solver_scene(const SolverSceneInput& input, const RetargetParam
   scene.no_fit = input.scene.no_fit;
   scene.distance_field = &input.distance_field;
   scene.garment_tangles = input.inherited.tangles;
+  for (const FacePair& p : input.inherited.pairs)
+    scene.garment_crossing_faces.push_back(
+        {std::min(p.first, p.second), std::max(p.first, p.second)});
   const std::vector<int>& pierced = input.pierced_faces;
   scene.faces_without_avatar_contact = pierced;
   if (!pierced.empty()) {

@@ -261,6 +261,56 @@ TEST_CASE("candidates: tangled self pairs that touch at the start are the only o
     CHECK_FALSE(std::binary_search(keys.begin(), keys.end(), gr::self_pair_key(ee)));
 }
 
+TEST_CASE("candidates: beside a crossing, a pair apart at the start stays modelled",
+          "[candidates][inherited]") {
+  // A sheet of two squares (faces 0-1 the first, split on its diagonal 0-2; faces 2-3 the
+  // second). Flap T (6, 7, 10) crosses the first square, its edge 6-7 through the diagonal;
+  // face U (7, 8, 9) shares vertex 7 with it and hangs 1e-7 over the second square (face 3):
+  // close, in the crossing's neighbourhood, but apart.
+  gr::TriangleMesh garment, avatar;
+  garment.vertices.resize(11, 3);
+  garment.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2, 1, 0, 0.5, 0.5, -0.2, 0.5,
+      0.5, 0.2, 1.3, 0.6, 1e-7, 1.2, 0.8, 1e-7, 0.4, 0.6, 0.05;
+  garment.faces.resize(6, 3);
+  garment.faces << 0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2, 6, 7, 10, 7, 8, 9;
+  avatar.vertices.resize(3, 3);
+  avatar.vertices << 5, 5, 5, 6, 5, 5, 5, 6, 5;
+  avatar.faces.resize(1, 3);
+  avatar.faces << 0, 1, 2;
+  gr::ContactMesh mesh = gr::ContactMesh::build(garment, avatar, true);
+  const std::array<int, 5> through_diagonal{1, 0, 2, 6, 7};
+  const std::array<int, 5> hanging_over{0, 8, 1, 2, 5};
+  // By neighbourhood (one tangle), the pair hanging over the second square was left out:
+  // nothing would have kept U from passing through it.
+  mesh.garment_tangles.assign(11, 0);
+  const auto by_tangle = gr::tangled_pairs_closer_than(mesh, garment.vertices, 1e-6);
+  CHECK(std::binary_search(by_tangle.begin(), by_tangle.end(), hanging_over));
+  // By pair: only what touches across the crossing faces (T with faces 0 and 1) is left out.
+  mesh.garment_crossing_faces = {{0, 4}, {1, 4}};
+  const auto keys = gr::crossing_pairs_closer_than(mesh, garment.vertices, 1e-6);
+  CHECK(std::is_sorted(keys.begin(), keys.end()));
+  CHECK(std::binary_search(keys.begin(), keys.end(), through_diagonal));
+  CHECK_FALSE(std::binary_search(keys.begin(), keys.end(), hanging_over));
+  for (const auto& key : keys)
+    for (int k = 1; k < 5; ++k) CHECK(key[static_cast<std::size_t>(k)] != 8);
+  // Barrier and CCD search it: a crossing of U with the second square cannot form.
+  mesh.unmodelled_self_pairs = keys;
+  bool searched = false;
+  for (const auto& pt : gr::find_candidates(mesh, stacked(garment, avatar), 0.01).point_triangle)
+    searched |= gr::self_pair_key(pt) == hanging_over;
+  CHECK(searched);
+  bool swept = false;
+  MatrixX3d moved = stacked(garment, avatar);
+  moved(8, 2) = -0.1;  // vertex 8 driven through face 3
+  for (const auto& pt :
+       gr::find_swept_candidates(mesh, stacked(garment, avatar), moved, 0.0).point_triangle)
+    swept |= gr::self_pair_key(pt) == hanging_over;
+  CHECK(swept);
+  // Without crossing faces nothing is left out.
+  mesh.garment_crossing_faces.clear();
+  CHECK(gr::crossing_pairs_closer_than(mesh, garment.vertices, 1e-6).empty());
+}
+
 namespace {
 
 /// A shared scene placed for contact, stacked.

@@ -182,6 +182,9 @@ TEST_CASE("garment problem: tangle pairs pressed together are those modelled fro
     CHECK(pressed_tangle_pairs(scene, parameters, pressed, gap) == 0);
   }
   scene.garment_tangles.assign(8, 0);
+  // The flap's face 2 crosses both quad faces (edge 4-5 through their diagonal), face 3
+  // touches face 0 at vertex 6.
+  scene.garment_crossing_faces = {{0, 2}, {0, 3}, {1, 2}};
   SECTION("as given, only the pairs left out from the start are that close") {
     CHECK(pressed_tangle_pairs(scene, parameters, scene.garment.vertices, gap) == 0);
   }
