@@ -105,10 +105,14 @@ gr::AnimationClip reach_clip(const gr::SkinBinding& skin, const gr::AnimationCli
     }
   }
   clip.channels = std::move(channels);
-  gr::AnimationChannel hips;  // the idle's root height, held
+  // The root where the idle's first pose has it, held: one key.
   for (const gr::AnimationChannel& c : idle.channels)
-    if (c.node == "Hips" && c.path == gr::ChannelPath::kTranslation) hips = c;
-  if (!hips.node.empty()) clip.channels.push_back(hips);
+    if (c.node == "Hips" && c.path == gr::ChannelPath::kTranslation) {
+      gr::AnimationChannel hips = c;
+      hips.times = {0.0};
+      hips.values = gr::sample_channel(c, idle.start).transpose();
+      clip.channels.push_back(hips);
+    }
   return clip;
 }
 
