@@ -145,7 +145,10 @@ struct PosedScene {
   std::vector<std::vector<Eigen::Matrix4d>> garment_worlds;
 };
 
-PosedScene pose_scene(const AnimatedScene& scene, const ScenePose& pose) {
+/// The avatar and the garments skinned into `pose` (file units), each garment with its
+/// bind-space morph offsets where `offsets` gives them.
+PosedScene pose_scene(const AnimatedScene& scene, const ScenePose& pose,
+                      const std::vector<MatrixX3d>* offsets = nullptr) {
   PosedScene posed;
   const SkinBinding& avatar_skin = *scene.avatar.asset.gltf.skin;
   posed.avatar = {
@@ -155,10 +158,33 @@ PosedScene pose_scene(const AnimatedScene& scene, const ScenePose& pose) {
     const AnimatedScene::Part& part = scene.garments[g];
     const SkinBinding& skin = *part.asset.gltf.skin;
     posed.garment_worlds.push_back(joint_worlds(skin, pose.garments[g]));
-    posed.garments.push_back(
-        {pose_skinned_mesh(skin, part.skinned, posed.garment_worlds.back()), part.mesh.faces});
+    posed.garments.push_back({pose_skinned_mesh(skin, part.skinned, posed.garment_worlds.back(),
+                                                offsets ? &(*offsets)[g] : nullptr),
+                              part.mesh.faces});
   }
   return posed;
+}
+
+/// The garments' rows of `garment_file` (file units, welded) as bind-space offsets from
+/// their places in `posed`: what a morph target adds before skinning.
+std::vector<MatrixX3d> bind_offsets(const AnimatedScene& scene, const MergedGarments& merged,
+                                    const PosedScene& posed, const MatrixX3d& garment_file) {
+  std::vector<MatrixX3d> offsets;
+  for (std::size_t g = 0; g < scene.garments.size(); ++g) {
+    const AnimatedScene::Part& part = scene.garments[g];
+    const std::vector<Eigen::Matrix3d> linear =
+        blend_linear_parts(*part.asset.gltf.skin, part.skinned, posed.garment_worlds[g]);
+    const MatrixX3d& skinned = posed.garments[g].vertices;
+    const MatrixX3d moved = merged.rows_of(g, garment_file, skinned) - skinned;
+    MatrixX3d bind(moved.rows(), 3);
+    for (Eigen::Index v = 0; v < moved.rows(); ++v)
+      bind.row(v) = linear[static_cast<std::size_t>(v)]
+                        .fullPivLu()
+                        .solve(moved.row(v).transpose())
+                        .transpose();
+    offsets.push_back(std::move(bind));
+  }
+  return offsets;
 }
 
 }  // namespace
@@ -189,19 +215,37 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
 
   const std::vector<double> times = frame_times(clip, fps);
   ClipCorrection result;
-  result.offsets.resize(times.size());
-  result.corrected.assign(times.size(), false);
+  result.target_of_frame.assign(times.size(), -1);
   for (std::size_t f = 0; f < times.size(); ++f) {
     ScenePose target{clip_pose(avatar_skin, clip, avatar_binding, times[f]), {}};
     for (std::size_t g = 0; g < scene.garments.size(); ++g)
       target.garments.push_back(
           clip_pose(*scene.garments[g].asset.gltf.skin, clip, garment_bindings[g], times[f]));
-    const MatrixX3d avatar_target = units.to_solver(pose_scene(scene, target).avatar.vertices);
+    PosedScene posed = pose_scene(scene, target);
+    const MatrixX3d avatar_target = units.to_solver(posed.avatar.vertices);
+    // Skinning alone, then the last correction carried by the skin: the next frame starts
+    // from whichever leaves this one free, with no solve.
+    const bool free_alone =
+        check_posed_frame(scene, posed.garments, posed.avatar, times[f]).total() == 0;
+    if (free_alone || !result.targets.empty()) {
+      const PosedScene carried =
+          free_alone ? PosedScene{} : pose_scene(scene, target, &result.targets.back());
+      if (free_alone ||
+          check_posed_frame(scene, carried.garments, posed.avatar, times[f]).total() == 0) {
+        if (!free_alone) {
+          result.target_of_frame[f] = static_cast<int>(result.targets.size()) - 1;
+          ++result.carried_frames;
+        }
+        garment_before = units.to_solver(merged.stack((free_alone ? posed : carried).garments));
+        avatar_before = avatar_target;
+        previous = target;
+        continue;
+      }
+    }
     const double reach = (avatar_target - avatar_before).rowwise().norm().maxCoeff();
     const int first_steps = std::max(1, static_cast<int>(std::ceil(reach / max_step)));
     const MatrixX3d garment_start = garment_before;
     const MatrixX3d avatar_start = avatar_before;
-    PosedScene posed;
     // A step that cannot push the garment clear (a pinch between closing parts) is tried
     // again from the frame's start in steps half as long.
     for (int attempt = 0; attempt < kAttempts; ++attempt) {
@@ -209,7 +253,6 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
       const bool last_attempt = attempt + 1 == kAttempts;
       garment_before = garment_start;
       avatar_before = avatar_start;
-      result.corrected[f] = false;
       bool stalled = false;
       for (int s = 1; s <= steps; ++s) {
         interrupter.check();
@@ -217,13 +260,13 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
         ++result.steps;
         const MatrixX3d avatar_now = units.to_solver(posed.avatar.vertices);
         const MatrixX3d skinned = merged.stack(posed.garments);
-        if (check_posed_frame(scene, posed.garments, posed.avatar, times[f]).total() == 0) {
+        if (s < steps &&
+            check_posed_frame(scene, posed.garments, posed.avatar, times[f]).total() == 0) {
           garment_before = units.to_solver(skinned);
           avatar_before = avatar_now;
           continue;
         }
         ++result.solves;
-        if (s == steps) result.corrected[f] = true;
         // The avatar moves from the last pose to this one, pushing the garment...
         GarmentScene moving;
         moving.garment = {garment_before, rest.faces};
@@ -256,24 +299,9 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
       if (!stalled) break;
     }
     previous = target;
-    // The frame's garment as offsets of the skinned one, taken back into bind space.
-    const MatrixX3d garment_file = units.to_file(garment_before);
-    result.offsets[f].resize(scene.garments.size());
-    if (!result.corrected[f]) continue;
-    for (std::size_t g = 0; g < scene.garments.size(); ++g) {
-      const AnimatedScene::Part& part = scene.garments[g];
-      const std::vector<Eigen::Matrix3d> linear =
-          blend_linear_parts(*part.asset.gltf.skin, part.skinned, posed.garment_worlds[g]);
-      const MatrixX3d skinned = posed.garments[g].vertices;
-      const MatrixX3d moved = merged.rows_of(g, garment_file, skinned) - skinned;
-      MatrixX3d offsets(moved.rows(), 3);
-      for (Eigen::Index v = 0; v < moved.rows(); ++v)
-        offsets.row(v) = linear[static_cast<std::size_t>(v)]
-                             .fullPivLu()
-                             .solve(moved.row(v).transpose())
-                             .transpose();
-      result.offsets[f][g] = std::move(offsets);
-    }
+    ++result.solved_frames;
+    result.target_of_frame[f] = static_cast<int>(result.targets.size());
+    result.targets.push_back(bind_offsets(scene, merged, posed, units.to_file(garment_before)));
   }
   result.seconds = stopwatch.seconds();
   return result;

@@ -72,21 +72,28 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
         correct_clip(scene, clip, options.fps, options.parameters, options.max_step, progress);
     report.steps = correction.steps;
     report.solves = correction.solves;
+    report.solved_frames = correction.solved_frames;
+    report.carried_frames = correction.carried_frames;
     report.corrections_failed = correction.corrections_failed;
     report.correction_seconds = correction.seconds;
-    std::vector<std::vector<int>> keyed(garments, std::vector<int>(correction.offsets.size(), -1));
-    for (std::size_t f = 0; f < correction.offsets.size(); ++f) {
-      if (!correction.corrected[f]) continue;
+    report.morph_targets = static_cast<int>(correction.targets.size());
+    const std::size_t frames = correction.target_of_frame.size();
+    std::vector<std::vector<int>> keyed(garments, std::vector<int>(frames, -1));
+    for (std::size_t f = 0; f < frames; ++f) {
+      const int t = correction.target_of_frame[f];
+      if (t < 0) continue;
       ++report.corrected_frames;
-      for (std::size_t g = 0; g < garments; ++g) {
-        keyed[g][f] = static_cast<int>(targets[g].deltas.size());
-        targets[g].deltas.push_back(correction.offsets[f][g]);
-      }
+      for (std::size_t g = 0; g < garments; ++g)
+        keyed[g][f] = static_cast<int>(targets[g].deltas.size()) + t;
     }
+    for (const std::vector<MatrixX3d>& target : correction.targets)
+      for (std::size_t g = 0; g < garments; ++g) targets[g].deltas.push_back(target[g]);
     progress.log("animate",
-                 "'{}': {} of {} frames corrected ({} poses solved, {} failed) in {:.2f} s",
-                 clip.clip.name, report.corrected_frames, correction.offsets.size(), report.solves,
-                 report.corrections_failed, report.correction_seconds);
+                 "'{}': {} of {} frames corrected ({} solved, {} carried the last correction; {} "
+                 "poses solved, {} failed) in {:.2f} s",
+                 clip.clip.name, report.corrected_frames, frames, report.solved_frames,
+                 report.carried_frames, report.solves, report.corrections_failed,
+                 report.correction_seconds);
     if (!correction.first_failure.empty())
       progress.log("animate", "first failed correction: {}", correction.first_failure);
     target_of_frame.push_back(std::move(keyed));
@@ -132,6 +139,9 @@ nlohmann::ordered_json to_json(const AnimateOutput& output) {
     const std::size_t frames = clip.written.frames.size();
     clips.push_back({{"skinning_alone", skinned},
                      {"corrected_frames", clip.corrected_frames},
+                     {"solved_frames", clip.solved_frames},
+                     {"carried_frames", clip.carried_frames},
+                     {"morph_targets", clip.morph_targets},
                      {"poses_solved", clip.steps},
                      {"corrections", clip.solves},
                      {"corrections_failed", clip.corrections_failed},

@@ -30,10 +30,13 @@ struct AnimateOptions {
 
 /// One clip: the garments played by their skins, the corrections, and the written result.
 struct AnimationReport {
-  ClipFindings skinned;  ///< the certified garments played by their skins alone
-  int corrected_frames = 0;
-  int steps = 0;   ///< poses solved for (frames and the steps between)
-  int solves = 0;  ///< poses that needed a correction
+  ClipFindings skinned;      ///< the certified garments played by their skins alone
+  int corrected_frames = 0;  ///< frames that play a correction
+  int solved_frames = 0;     ///< of those, the frames a correction was solved for
+  int carried_frames = 0;    ///< of those, the frames that play the last one, still free
+  int morph_targets = 0;     ///< corrections written (one per solved frame)
+  int steps = 0;             ///< poses solved for (frames and the steps between)
+  int solves = 0;            ///< poses that needed a correction
   int corrections_failed = 0;
   double correction_seconds = 0.0;
   ClipFindings written;  ///< the written files played, corrections included

@@ -33,12 +33,16 @@ TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected 
   CHECK(clip.skinned.frames.size() == 31);
   CHECK(clip.skinned.crossing_frames() > 5);
   CHECK(clip.corrected_frames == static_cast<int>(clip.skinned.crossing_frames()));
+  // A frame plays a solved correction or the last one carried on, one target per solve.
+  CHECK(clip.solved_frames >= 1);
+  CHECK(clip.solved_frames + clip.carried_frames == clip.corrected_frames);
+  CHECK(clip.morph_targets == clip.solved_frames);
   CHECK(clip.corrections_failed == 0);
   // Every frame of the file as written, played with its morph weights, is free.
   CHECK(clip.written.crossing_frames() == 0);
   CHECK(output.certified());
 
-  // The rest pose is what it was, and the file carries the clip and one target a frame.
+  // The rest pose is what it was, and the file carries the clip and one target a solve.
   const GltfAsset written = read_gltf(sleeve);
   CHECK(written.document.positions == rest);
   const std::vector<AnimationClip> clips = read_gltf_animations(sleeve);
@@ -48,14 +52,14 @@ TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected 
   for (const AnimationChannel& channel : clips.front().channels)
     if (channel.path == ChannelPath::kWeights) {
       weights = true;
-      CHECK(channel.values.cols() == clip.corrected_frames);
+      CHECK(channel.values.cols() == clip.morph_targets);
       CHECK(channel.times.size() == 31);
     }
   CHECK(weights);
   const std::vector<MeshMorphTargets> targets =
       read_morph_targets(written.gltf, sleeve, written.document.positions.rows());
   REQUIRE(targets.size() == 1);
-  CHECK(static_cast<int>(targets.front().deltas.size()) == clip.corrected_frames);
+  CHECK(static_cast<int>(targets.front().deltas.size()) == clip.morph_targets);
   // A valid glTF file, as the Khronos validator reads it.
   const test::ValidatorRun validator = test::run_gltf_validator(sleeve);
   INFO(validator.summary.dump(2));
