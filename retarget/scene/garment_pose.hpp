@@ -27,6 +27,8 @@ struct PoseReport {
   SkinningMethod method = SkinningMethod::kLinearBlend;
   int joints = 0;
   double largest_turn_degrees = 0.0;  ///< the largest turn of a joint
+  /// Crossings the turn made, pushed apart after it (all of them, or the pose is kept).
+  int untangled_pairs = 0;
   /// The pose step's own change of shape, scale free (ShapeChange).
   double mean_edge_change = 0.0;
   double p95_edge_change = 0.0;
@@ -39,9 +41,10 @@ nlohmann::json to_json(const PoseReport& report);
 /// (pose_transfer_motions on the skeletons matched from the two skins), by its own skin
 /// weights: its document and simulation positions and the source skeleton move; the
 /// motions are kept in scene.garment_pose, so that a source body of the same skin follows.
-/// A garment without its own skin, an outfit, skeletons given as files, or a garment that
-/// its skin would fold into crossings of its own (exact check) keep their pose (the report
-/// says why).
+/// Crossings of its own that the turn makes (exact check) are pushed apart
+/// (untangle_crossings). A garment without its own skin, an outfit, skeletons given as
+/// files, or a garment left crossing itself where it did not before keep their pose (the
+/// report says why).
 PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method);
 
 /// `positions` (#P×3, a document of a skinned glTF file) moved by scene.garment_pose, when

@@ -22,6 +22,12 @@ ReadOutput run_read(const ReadInput& input, const ReadOptions& options, Progress
                  "{:.0f} degrees): edge change mean {:.3f}, p95 {:.3f}",
                  to_string(out.pose.method), out.pose.joints, out.pose.largest_turn_degrees,
                  out.pose.mean_edge_change, out.pose.p95_edge_change);
+  if (out.pose.posed && out.pose.untangled_pairs > 0)
+    progress.log("pose", "{} face pairs the turn made cross were pushed apart",
+                 out.pose.untangled_pairs);
+  const bool skinned = out.scene.garment_gltf && out.scene.garment_gltf->skin;
+  if (!out.pose.posed && out.pose.mode == PoseMode::kTarget && skinned)
+    progress.log("pose", "the garment keeps its pose: {}", out.pose.reason);
   out.seconds = timer.seconds();
   return out;
 }
