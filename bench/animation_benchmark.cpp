@@ -156,9 +156,10 @@ int main(int argc, char** argv) {
   write_reach_clip(avatar, idle, reach);
 
   std::printf(
-      "| garment | faces | clip | frames | crossing, skinning alone | corrected | failed | "
-      "crossing as written | correction s/frame | run wall s | CPU s | result |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| garment | faces | clip | frames | crossing, skinning alone | corrected | solved | "
+      "morph targets | failed | crossing as written | correction s/frame | run wall s | CPU s | "
+      "result |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Garment& garment : garments()) {
     if (!only.empty() && std::find(only.begin(), only.end(), garment.label) == only.end()) continue;
     for (const std::string& clip : {idle, reach}) {
@@ -185,17 +186,17 @@ int main(int argc, char** argv) {
       const double cpu = gr::bench::cpu_seconds() - cpu_before;
       const gr::RetargetReport& r = result.report;
       if (!r.animation || r.animation->clips.empty()) {
-        std::printf("| %s | %d | %s | - | - | - | - | - | - | %.1f | %.1f | %s: %s |\n",
+        std::printf("| %s | %d | %s | - | - | - | - | - | - | - | - | %.1f | %.1f | %s: %s |\n",
                     garment.label.c_str(), r.normalize.garment_faces, fs::path(clip).stem().c_str(),
                     wall.seconds(), cpu, gr::to_string(result.status), result.message.c_str());
         continue;
       }
       const gr::AnimationReport& a = r.animation->clips.front();
       const double frames = static_cast<double>(a.written.frames.size());
-      std::printf("| %s | %d | %s | %zu | %zu | %d | %d | %zu | %.2f | %.1f | %.1f | %s |\n",
+      std::printf("| %s | %d | %s | %zu | %zu | %d | %d | %d | %d | %zu | %.2f | %.1f | %.1f | %s |\n",
                   garment.label.c_str(), r.normalize.garment_faces, fs::path(clip).stem().c_str(),
                   a.written.frames.size(), a.skinned.crossing_frames(), a.corrected_frames,
-                  a.corrections_failed, a.written.crossing_frames(), a.correction_seconds / frames,
+                  a.solved_frames, a.morph_targets, a.corrections_failed, a.written.crossing_frames(), a.correction_seconds / frames,
                   wall.seconds(), cpu, gr::to_string(result.status));
       std::fflush(stdout);
     }

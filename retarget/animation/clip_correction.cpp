@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -138,7 +139,8 @@ ScenePose blend(const ScenePose& from, const ScenePose& to, double s) {
   return pose;
 }
 
-/// The avatar and the garments skinned into `pose` (file units).
+/// The avatar and the garments as a pose puts them (file units), with the garments' joint
+/// worlds.
 struct PosedScene {
   TriangleMesh avatar;
   std::vector<TriangleMesh> garments;
@@ -190,8 +192,9 @@ std::vector<MatrixX3d> bind_offsets(const AnimatedScene& scene, const MergedGarm
 }  // namespace
 
 ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen, double fps,
-                            const RetargetParameters& parameters, double max_step,
-                            Interrupter& interrupter) {
+                            const ClipFindings& skinning_alone,
+                            const RetargetParameters& parameters,
+                            double max_step, Interrupter& interrupter) {
   const Stopwatch stopwatch;
   StopOnly quiet(interrupter);
   const AnimationClip& clip = chosen.clip;
@@ -214,6 +217,8 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
   MatrixX3d garment_before = rest.vertices;  // the last pose's garment, solver units
 
   const std::vector<double> times = frame_times(clip, fps);
+  if (skinning_alone.frames.size() != times.size())
+    throw std::invalid_argument("the clip played by skinning alone has other frames");
   ClipCorrection result;
   result.target_of_frame.assign(times.size(), -1);
   for (std::size_t f = 0; f < times.size(); ++f) {
@@ -221,22 +226,21 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
     for (std::size_t g = 0; g < scene.garments.size(); ++g)
       target.garments.push_back(
           clip_pose(*scene.garments[g].asset.gltf.skin, clip, garment_bindings[g], times[f]));
-    PosedScene posed = pose_scene(scene, target);
-    const MatrixX3d avatar_target = units.to_solver(posed.avatar.vertices);
+    const PosedScene at_target = pose_scene(scene, target);
+    const MatrixX3d avatar_target = units.to_solver(at_target.avatar.vertices);
     // Skinning alone, then the last correction carried by the skin: the next frame starts
     // from whichever leaves this one free, with no solve.
-    const bool free_alone =
-        check_posed_frame(scene, posed.garments, posed.avatar, times[f]).total() == 0;
+    const bool free_alone = skinning_alone.frames[f].total() == 0;
     if (free_alone || !result.targets.empty()) {
       const PosedScene carried =
           free_alone ? PosedScene{} : pose_scene(scene, target, &result.targets.back());
       if (free_alone ||
-          check_posed_frame(scene, carried.garments, posed.avatar, times[f]).total() == 0) {
+          check_posed_frame(scene, carried.garments, at_target.avatar, times[f]).total() == 0) {
         if (!free_alone) {
           result.target_of_frame[f] = static_cast<int>(result.targets.size()) - 1;
           ++result.carried_frames;
         }
-        garment_before = units.to_solver(merged.stack((free_alone ? posed : carried).garments));
+        garment_before = units.to_solver(merged.stack((free_alone ? at_target : carried).garments));
         avatar_before = avatar_target;
         previous = target;
         continue;
@@ -256,7 +260,8 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
       bool stalled = false;
       for (int s = 1; s <= steps; ++s) {
         interrupter.check();
-        posed = pose_scene(scene, s == steps ? target : blend(previous, target, double(s) / steps));
+        const PosedScene posed =
+            s == steps ? at_target : pose_scene(scene, blend(previous, target, double(s) / steps));
         ++result.steps;
         const MatrixX3d avatar_now = units.to_solver(posed.avatar.vertices);
         const MatrixX3d skinned = merged.stack(posed.garments);
@@ -273,7 +278,10 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
         moving.avatar = {avatar_now, scene.avatar.mesh.faces};
         moving.shrunk_avatar = avatar_before;
         moving.garment_tangles = tangles;
+        const Stopwatch push_time;
         const InflationResult pushed = inflate_avatar(moving, parameters, {}, quiet);
+        result.push_seconds += push_time.seconds();
+        result.push_iterations += pushed.newton_iterations;
         if (!pushed.succeeded() && !last_attempt) {
           stalled = true;
           break;
@@ -292,7 +300,11 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
                             to_string(pushed.status), pushed.t, pushed.message);
           garment_before = units.to_solver(skinned);
         } else {
-          garment_before = fit_garment(settling, pushed.garment, parameters, quiet).garment;
+          const Stopwatch settle_time;
+          FitResult settled = fit_garment(settling, pushed.garment, parameters, quiet);
+          result.settle_seconds += settle_time.seconds();
+          result.settle_iterations += settled.solve.iterations;
+          garment_before = std::move(settled.garment);
         }
         avatar_before = avatar_now;
       }
@@ -301,7 +313,8 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
     previous = target;
     ++result.solved_frames;
     result.target_of_frame[f] = static_cast<int>(result.targets.size());
-    result.targets.push_back(bind_offsets(scene, merged, posed, units.to_file(garment_before)));
+    result.targets.push_back(
+        bind_offsets(scene, merged, at_target, units.to_file(garment_before)));
   }
   result.seconds = stopwatch.seconds();
   return result;

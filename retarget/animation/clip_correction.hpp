@@ -22,6 +22,10 @@ struct ClipCorrection {
   std::string first_failure;   ///< how the first of them ended
   int steps = 0;               ///< poses solved for, sampled frames and the steps between
   int solves = 0;              ///< of those, the ones skinning alone left crossing
+  int push_iterations = 0;     ///< Newton steps of the pushes (the avatar moving), summed
+  int settle_iterations = 0;   ///< Newton steps of the garment settling, summed
+  double push_seconds = 0.0;
+  double settle_seconds = 0.0;
   double seconds = 0.0;
 };
 
@@ -35,7 +39,10 @@ struct ClipCorrection {
 /// avatar moves a vertex further than `max_step` (normalized units, body ≈ 2 tall), the joints are
 /// blended in smaller steps. All garments of the scene are solved together.
 /// @throw Interrupted from `interrupter`.
+/// @param skinning_alone the clip played by skinning alone (check_clip on the same scene,
+///        clip and fps): its free frames need no correction.
 ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& clip, double fps,
+                            const ClipFindings& skinning_alone,
                             const RetargetParameters& parameters, double max_step,
                             Interrupter& interrupter = null_interrupter());
 

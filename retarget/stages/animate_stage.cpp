@@ -69,9 +69,14 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
     report.skinned = check_clip(scene, clip, options.fps);
     progress.log("animate", "{} (skinning alone)", clip_summary(report.skinned));
     const ClipCorrection correction =
-        correct_clip(scene, clip, options.fps, options.parameters, options.max_step, progress);
+        correct_clip(scene, clip, options.fps, report.skinned, options.parameters,
+                     options.max_step, progress);
     report.steps = correction.steps;
     report.solves = correction.solves;
+    report.push_iterations = correction.push_iterations;
+    report.settle_iterations = correction.settle_iterations;
+    report.push_seconds = correction.push_seconds;
+    report.settle_seconds = correction.settle_seconds;
     report.solved_frames = correction.solved_frames;
     report.carried_frames = correction.carried_frames;
     report.corrections_failed = correction.corrections_failed;
@@ -145,6 +150,10 @@ nlohmann::ordered_json to_json(const AnimateOutput& output) {
                      {"poses_solved", clip.steps},
                      {"corrections", clip.solves},
                      {"corrections_failed", clip.corrections_failed},
+                     {"push", {{"newton_iterations", clip.push_iterations},
+                               {"seconds", clip.push_seconds}}},
+                     {"settle", {{"newton_iterations", clip.settle_iterations},
+                                 {"seconds", clip.settle_seconds}}},
                      {"correction_seconds", clip.correction_seconds},
                      {"seconds_per_frame",
                       frames > 0 ? clip.correction_seconds / static_cast<double>(frames) : 0.0},

@@ -37,6 +37,11 @@ struct AnimationReport {
   int morph_targets = 0;     ///< corrections written (one per solved frame)
   int steps = 0;             ///< poses solved for (frames and the steps between)
   int solves = 0;            ///< poses that needed a correction
+  /// The corrections' Newton steps and time: pushes (the avatar moving) and settling.
+  int push_iterations = 0;
+  int settle_iterations = 0;
+  double push_seconds = 0.0;
+  double settle_seconds = 0.0;
   int corrections_failed = 0;
   double correction_seconds = 0.0;
   ClipFindings written;  ///< the written files played, corrections included
