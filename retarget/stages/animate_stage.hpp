@@ -36,7 +36,8 @@ struct AnimationReport {
   int solves = 0;  ///< poses that needed a correction
   int corrections_failed = 0;
   double correction_seconds = 0.0;
-  ClipFindings written;  ///< the written files played, corrections included
+  ClipFindings written;     ///< the written files played, corrections included
+  ClipPoses written_poses;  ///< the meshes of every frame of `written`, as checked
 };
 
 struct AnimateOutput {
