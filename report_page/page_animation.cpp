@@ -98,8 +98,9 @@ Json page_animation_scene(const ReportPageData& data) {
             which + ": not one posed mesh, distance list and mark list per garment");
     for (std::size_t g = 0; g < garments; ++g) {
       const Eigen::Index n = data.garments[g].shapes.front().vertices.rows();
-      require(frame.garments[g].rows() == n && static_cast<Eigen::Index>(frame.distance[g].size()) == n,
-              which + ": garment '" + data.garments[g].name + "' has another vertex count");
+      require(
+          frame.garments[g].rows() == n && static_cast<Eigen::Index>(frame.distance[g].size()) == n,
+          which + ": garment '" + data.garments[g].name + "' has another vertex count");
       for (const int face : frame.marked_faces[g])
         require(face >= 0 && face < data.garments[g].faces.rows(),
                 which + ": a marked face outside garment '" + data.garments[g].name + "'");
@@ -133,18 +134,19 @@ Json page_animation_scene(const ReportPageData& data) {
   const auto index_or_null = [](std::optional<std::size_t> f) -> Json {
     return f ? Json(*f) : Json(nullptr);
   };
-  return Json{{"clip", animation.clip},
-              {"fps", animation.fps},
-              {"clip_count", animation.clip_count},
-              {"frame_count", frame_count},
-              {"times", std::move(times)},
-              {"avatar_pairs", std::move(avatar_pairs)},
-              {"self_pairs", std::move(self_pairs)},
-              {"layer_pairs", std::move(layer_pairs)},
-              {"first_crossing", index_or_null(animation.first_crossing())},
-              {"worst_frame", index_or_null(animation.worst_frame())},
-              {"avatar", {{"frames", keys}, {"positions", encode_positions(stacked(avatar_frames))}}},
-              {"garments", std::move(garment_entries)}};
+  return Json{
+      {"clip", animation.clip},
+      {"fps", animation.fps},
+      {"clip_count", animation.clip_count},
+      {"frame_count", frame_count},
+      {"times", std::move(times)},
+      {"avatar_pairs", std::move(avatar_pairs)},
+      {"self_pairs", std::move(self_pairs)},
+      {"layer_pairs", std::move(layer_pairs)},
+      {"first_crossing", index_or_null(animation.first_crossing())},
+      {"worst_frame", index_or_null(animation.worst_frame())},
+      {"avatar", {{"frames", keys}, {"positions", encode_positions(stacked(avatar_frames))}}},
+      {"garments", std::move(garment_entries)}};
 }
 
 std::string frame_slider_html(const PageAnimation& animation) {
@@ -182,17 +184,20 @@ std::string frame_slider_html(const PageAnimation& animation) {
         *worst, *worst, animation.frames[*worst].total_pairs());
   out += "<button type=\"button\" id=\"gr-rest\">pose as given</button>\n";
   out += "<span class=\"frame-info\" id=\"gr-frame-info\">pose as given</span>\n</div>\n";
-  const std::string first_text =
-      first ? fmt::format("first crossing frame {} (outlined tick)", *first) : "no frame crosses";
+  const std::string marks_text =
+      first
+          ? fmt::format("Ticks: frames that cross; outlined: the first ({}); tall: the worst ({}).",
+                        *first, *worst)
+          : "No frame crosses.";
   out += fmt::format(
-      "<p class=\"hint\">Clip “{}”{}: {} frames at {:g} fps. Ticks: frames that cross; {}; "
-      "worst frame (tall tick){}. Space plays and pauses, arrow keys step.</p>\n",
+      "<p class=\"hint\">Clip “{}”{}: {} frames at {:g} fps. {} Space plays and pauses, arrow "
+      "keys step.</p>\n",
       html_escape(animation.clip),
       animation.clip_count > 1
           ? fmt::format(" (of {} clips checked, the one with the most crossing frames)",
                         animation.clip_count)
           : "",
-      frames, animation.fps, first_text, worst ? fmt::format(" {}", *worst) : " none");
+      frames, animation.fps, marks_text);
   return out;
 }
 

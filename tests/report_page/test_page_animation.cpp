@@ -173,7 +173,8 @@ TEST_CASE("a page's clip keeps its positions within the size budget", "[report_p
     const std::size_t avatar_vertices = static_cast<std::size_t>(data.avatar.vertices.rows());
     const std::size_t garment_vertices =
         static_cast<std::size_t>(data.garments[0].shapes[0].vertices.rows());
-    const std::size_t page_stride = gr::avatar_frame_stride(frames, avatar_vertices, garment_vertices);
+    const std::size_t page_stride =
+        gr::avatar_frame_stride(frames, avatar_vertices, garment_vertices);
     CAPTURE(page_stride);
     CHECK(page_stride > 1);
     const nlohmann::ordered_json clip = gr::report_page_scene(data)["animation"];

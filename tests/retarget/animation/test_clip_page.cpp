@@ -76,8 +76,10 @@ TEST_CASE("the page's clip agrees frame by frame with the clip's exact check",
     garment.name = "sleeve";
     garment.faces = scene.garments[0].mesh.faces;
     garment.shapes.push_back(
-        {"as given", scene.garments[0].mesh.vertices,
-         distances_to_surface(scene.avatar.mesh, scene.garments[0].mesh.vertices), {}});
+        {"as given",
+         scene.garments[0].mesh.vertices,
+         distances_to_surface(scene.avatar.mesh, scene.garments[0].mesh.vertices),
+         {}});
     data.garments.push_back(garment);
     data.animation = page;
     const nlohmann::ordered_json json = report_page_scene(data)["animation"];
