@@ -1,7 +1,8 @@
 // One browser check of a report page, in Debian's headless Chromium driven by playwright-core.
 //
 //   node check_report_page.mjs --page FILE
-//        --check console|network|canvas|garment-pixels|ease-pixels|garment-toggle|frame-slider
+//        --check console|network|canvas|garment-pixels|ease-pixels|garment-toggle|frame-slider|
+//                frame-pixels
 //                              [--screenshot OUT.png]
 //
 // Exits 0 when the check passes, 1 with the reason when it fails. The page is opened from
@@ -343,6 +344,16 @@ const checks = {
     return `${clip.count} frames, ${ticks} crossing ticks, worst ${clip.worst}, first ${clip.first}; ` +
         `${different} pixels differ between frames 0 and ${last}, vertices move up to ` +
         `${largest.toFixed(0)} px; play reached frame ${playing[1]} in 0.5 s`;
+  },
+
+  // A clip's last frame: garment vertices seen from the camera are drawn where that frame
+  // poses them, in the colour of their distance to the avatar posed with them.
+  async 'frame-pixels'(browser, url, options) {
+    return garmentPixels(browser, url, options, async (page) => {
+      const last = await page.evaluate(() => window.grView.frameCount - 1);
+      expect(last > 0, 'the page has no clip');
+      await page.evaluate((f) => window.grView.setFrame(f), last);
+    });
   },
 
   // The ease colour mode: the box switches the garment to the ease map and its legend.
