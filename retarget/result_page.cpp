@@ -83,6 +83,7 @@ std::optional<PageAnimation> retarget_animation(const AnimateOutput& animate,
   const AnimationReport& played = animate.clips[page_clip(written)];
   const Validation& checked = certificate.validation;
   if (played.written_poses.garments.empty() ||
+      played.written_poses.avatar.front().rows() != avatar.vertices.rows() ||
       played.written_poses.garments.front().size() != garments.size() ||
       checked.garments.size() != garments.size())
     return std::nullopt;

@@ -71,6 +71,20 @@ std::vector<ShapeChange> measure_against_sources(const Validation& validation,
   return changes;
 }
 
+/// Whether the meshes posed for the clips are those the validator read (which the page
+/// shows): same vertex and face counts, garment by garment.
+bool same_page_meshes(const AnimatedScene& animated, const Validation& validation) {
+  const auto same = [](const TriangleMesh& a, const TriangleMesh& b) {
+    return a.vertices.rows() == b.vertices.rows() && a.faces.rows() == b.faces.rows();
+  };
+  if (animated.garments.size() != validation.garments.size() ||
+      !same(animated.avatar.mesh, validation.avatar.mesh))
+    return false;
+  for (std::size_t g = 0; g < animated.garments.size(); ++g)
+    if (!same(animated.garments[g].mesh, validation.garments[g].mesh)) return false;
+  return true;
+}
+
 }  // namespace
 
 ValidateResult run_validate(const ValidateOptions& given) {
@@ -129,7 +143,7 @@ ValidateResult run_validate(const ValidateOptions& given) {
   if (!options.marks.empty()) write_marks_obj(outputs.stage(options.marks), validation);
   if (!options.html.empty()) {
     std::optional<PageAnimation> animation;
-    if (!clips.empty()) {
+    if (!clips.empty() && same_page_meshes(*animated, validation)) {
       std::vector<const ClipFindings*> checked;
       for (const ClipFindings& clip : clips) checked.push_back(&clip);
       const std::size_t played = page_clip(checked);
