@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,35 @@ struct PageGarment {
   std::vector<GarmentShape> shapes;  ///< one or two
 };
 
+/// One sampled frame of a clip: the avatar and the garments posed, and what crossed.
+/// Positions and lengths in the page's frame and units.
+struct PageFrame {
+  double time = 0.0;                ///< seconds from the clip's first keyframe
+  std::size_t avatar_pairs = 0;     ///< garment–avatar face pairs crossing
+  std::size_t self_pairs = 0;       ///< garment self pairs crossing (not crossing at rest)
+  std::size_t layer_pairs = 0;      ///< garment–garment pairs crossing (not crossing at rest)
+  MatrixX3d avatar;                 ///< #Va×3, the avatar posed
+  std::vector<MatrixX3d> garments;  ///< per page garment, #Vg×3, posed as played
+  /// Per garment, #Vg: unsigned distance from each posed vertex to the posed avatar.
+  std::vector<std::vector<double>> distance;
+  std::vector<std::vector<int>> marked_faces;  ///< per garment, its faces in crossing pairs
+  std::size_t total_pairs() const { return avatar_pairs + self_pairs + layer_pairs; }
+};
+
+/// A clip played on the page's avatar and garments, frame by frame (the frame slider).
+struct PageAnimation {
+  std::string clip;  ///< the clip's name
+  double fps = 0.0;  ///< frames sampled per second
+  /// Clips that were checked; the page plays `clip`, the report holds them all.
+  std::size_t clip_count = 1;
+  std::vector<PageFrame> frames;
+
+  /// The first frame with a crossing pair, and the one with the most (the first of equals);
+  /// none when every frame is free.
+  std::optional<std::size_t> first_crossing() const;
+  std::optional<std::size_t> worst_frame() const;
+};
+
 /// Everything a report page shows: the avatar, the garments coloured by distance to it,
 /// and the JSON documents whose numbers go beside the view.
 struct ReportPageData {
@@ -44,6 +75,8 @@ struct ReportPageData {
   std::string units = "avatar units";  ///< name of the page's length unit
   nlohmann::json report;               ///< a retarget run's report.json, or null
   nlohmann::ordered_json certificate;  ///< certificate.json or a validation report, or null
+  /// A clip to play under the view with a frame slider; none: the page shows the files' pose.
+  std::optional<PageAnimation> animation{};
 };
 
 }  // namespace gr

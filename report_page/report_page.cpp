@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "report_page/mesh_encoding.hpp"
+#include "report_page/page_animation.hpp"
 #include "report_page/page_assets.hpp"
 #include "report_page/page_colours.hpp"
 #include "report_page/page_html.hpp"
@@ -450,14 +451,16 @@ nlohmann::ordered_json report_page_scene(const ReportPageData& data) {
   require(data.avatar.faces.rows() == 0 ||
               (data.avatar.faces.minCoeff() >= 0 && data.avatar.faces.maxCoeff() < avatar_vertices),
           "avatar face index out of range");
-  return Json{{"units", data.units},
-              {"heat_range", heat_range},
-              {"colours", page_colours_json()},
-              {"view", to_json(guess_view_frame(data.avatar.vertices))},
-              {"avatar",
-               {{"positions", encode_positions(data.avatar.vertices)},
-                {"faces", encode_indices(data.avatar.faces)}}},
-              {"garments", garments}};
+  Json scene{{"units", data.units},
+             {"heat_range", heat_range},
+             {"colours", page_colours_json()},
+             {"view", to_json(guess_view_frame(data.avatar.vertices))},
+             {"avatar",
+              {{"positions", encode_positions(data.avatar.vertices)},
+               {"faces", encode_indices(data.avatar.faces)}}},
+             {"garments", garments}};
+  if (data.animation) scene["animation"] = page_animation_scene(data);
+  return scene;
 }
 
 std::string report_page_html(const ReportPageData& data) {
@@ -472,6 +475,7 @@ std::string report_page_html(const ReportPageData& data) {
   body +=
       "<div class=\"canvas-box\" id=\"gr-view\"><noscript>The 3D view needs "
       "JavaScript.</noscript></div>\n";
+  if (data.animation) body += frame_slider_html(*data.animation);
   body += legend_html(data, heat_range);
   if (has_ease(data)) body += ease_legend_html();
   body += std::string("<p class=\"hint\">Drag to orbit, scroll to zoom, right-drag to pan") +

@@ -7,6 +7,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include "report_page/report_page.hpp"
 #include "report_page/still_image.hpp"
@@ -57,7 +58,102 @@ std::vector<bool> no_fit_faces(const Scene& scene) {
   return no_fit;
 }
 
+/// Each page vertex's row in the written mesh: the identity, or, where the page's garment
+/// splits vertices otherwise (same faces in the same order), a corner's written vertex.
+std::vector<Eigen::Index> written_rows(const MatrixX3i& page_faces, Eigen::Index page_vertices,
+                                       const MatrixX3i& written_faces) {
+  std::vector<Eigen::Index> rows(static_cast<std::size_t>(page_vertices));
+  for (Eigen::Index v = 0; v < page_vertices; ++v) rows[static_cast<std::size_t>(v)] = v;
+  if (page_faces == written_faces) return rows;
+  for (Eigen::Index f = 0; f < page_faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      rows[static_cast<std::size_t>(page_faces(f, c))] = written_faces(f, c);
+  return rows;
+}
+
+/// The animate stage's clip for a retarget page, its written garments mapped onto the
+/// page's vertices; none when they do not match the page's garments.
+std::optional<PageAnimation> retarget_animation(const AnimateOutput& animate,
+                                                const std::vector<PageGarment>& garments,
+                                                const Certificate& certificate,
+                                                const TriangleMesh& avatar) {
+  if (animate.clips.empty()) return std::nullopt;
+  std::vector<const ClipFindings*> written;
+  for (const AnimationReport& clip : animate.clips) written.push_back(&clip.written);
+  const AnimationReport& played = animate.clips[page_clip(written)];
+  const Validation& checked = certificate.validation;
+  if (played.written_poses.garments.empty() ||
+      played.written_poses.avatar.front().rows() != avatar.vertices.rows() ||
+      played.written_poses.garments.front().size() != garments.size() ||
+      checked.garments.size() != garments.size())
+    return std::nullopt;
+  for (std::size_t g = 0; g < garments.size(); ++g)
+    if (played.written_poses.garments.front()[g].rows() !=
+            checked.garments[g].mesh.vertices.rows() ||
+        garments[g].faces.rows() != checked.garments[g].mesh.faces.rows())
+      return std::nullopt;
+  PageAnimation animation =
+      page_animation(played.written, played.written_poses, avatar.faces, animate.clips.size());
+  for (std::size_t g = 0; g < garments.size(); ++g) {
+    const Eigen::Index page_vertices = garments[g].shapes.front().vertices.rows();
+    const std::vector<Eigen::Index> rows =
+        written_rows(garments[g].faces, page_vertices, checked.garments[g].mesh.faces);
+    for (PageFrame& frame : animation.frames) {
+      MatrixX3d positions(page_vertices, 3);
+      std::vector<double> distance(static_cast<std::size_t>(page_vertices));
+      for (Eigen::Index v = 0; v < page_vertices; ++v) {
+        const Eigen::Index row = rows[static_cast<std::size_t>(v)];
+        positions.row(v) = frame.garments[g].row(row);
+        distance[static_cast<std::size_t>(v)] = frame.distance[g][static_cast<std::size_t>(row)];
+      }
+      frame.garments[g] = std::move(positions);
+      frame.distance[g] = std::move(distance);
+    }
+  }
+  return animation;
+}
+
 }  // namespace
+
+std::size_t page_clip(const std::vector<const ClipFindings*>& clips) {
+  const auto worst_pairs = [](const ClipFindings& clip) -> std::size_t {
+    const auto worst = clip.worst_frame();
+    return worst ? clip.frames[*worst].total() : 0;
+  };
+  std::size_t chosen = 0;
+  for (std::size_t c = 1; c < clips.size(); ++c) {
+    const ClipFindings& a = *clips[c];
+    const ClipFindings& b = *clips[chosen];
+    if (a.crossing_frames() > b.crossing_frames() ||
+        (a.crossing_frames() == b.crossing_frames() && worst_pairs(a) > worst_pairs(b)))
+      chosen = c;
+  }
+  return chosen;
+}
+
+PageAnimation page_animation(const ClipFindings& findings, const ClipPoses& poses,
+                             const MatrixX3i& avatar_faces, std::size_t clip_count) {
+  PageAnimation animation;
+  animation.clip = findings.clip;
+  animation.fps = findings.fps;
+  animation.clip_count = clip_count;
+  animation.frames.resize(findings.frames.size());
+  tbb::parallel_for(std::size_t{0}, findings.frames.size(), [&](std::size_t f) {
+    const FrameFindings& found = findings.frames[f];
+    PageFrame& frame = animation.frames[f];
+    frame.time = found.time;
+    frame.avatar_pairs = found.avatar_pairs;
+    frame.self_pairs = found.self_pairs;
+    frame.layer_pairs = found.layer_pairs;
+    frame.avatar = poses.avatar[f];
+    frame.garments = poses.garments[f];
+    frame.marked_faces = found.crossing_faces;
+    const TriangleMesh avatar{frame.avatar, avatar_faces};
+    for (const MatrixX3d& garment : frame.garments)
+      frame.distance.push_back(distances_to_surface(avatar, garment));
+  });
+  return animation;
+}
 
 ReportPageData retarget_page_data(const Scene& scene, const Normalization& frames,
                                   const Certificate& certificate, const RetargetReport& report) {
@@ -124,6 +220,8 @@ ReportPageData retarget_page_data(const Scene& scene, const Normalization& frame
     }
     data.garments.push_back(std::move(garment));
   }
+  if (report.animation)
+    data.animation = retarget_animation(*report.animation, data.garments, certificate, data.avatar);
   data.report = to_json(report);
   data.certificate = certificate.json;
   return data;
@@ -139,7 +237,8 @@ void write_retarget_pages(const std::string& out_dir, bool stills, const Scene& 
 }
 
 void write_validation_page(const std::string& path, const Validation& validation,
-                           const nlohmann::ordered_json& report) {
+                           const nlohmann::ordered_json& report,
+                           std::optional<PageAnimation> animation) {
   ReportPageData data;
   data.title =
       "Validation of " + fs::path(validation.garments.front().path).filename().string() +
@@ -160,6 +259,7 @@ void write_validation_page(const std::string& path, const Validation& validation
     data.garments.push_back(std::move(garment));
   }
   data.certificate = report;
+  data.animation = std::move(animation);
   write_report_page(path, data);
 }
 

@@ -1,6 +1,7 @@
 #include "retarget/validate_run.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -70,6 +71,20 @@ std::vector<ShapeChange> measure_against_sources(const Validation& validation,
   return changes;
 }
 
+/// Whether the meshes posed for the clips are those the validator read (which the page
+/// shows): same vertex and face counts, garment by garment.
+bool same_page_meshes(const AnimatedScene& animated, const Validation& validation) {
+  const auto same = [](const TriangleMesh& a, const TriangleMesh& b) {
+    return a.vertices.rows() == b.vertices.rows() && a.faces.rows() == b.faces.rows();
+  };
+  if (animated.garments.size() != validation.garments.size() ||
+      !same(animated.avatar.mesh, validation.avatar.mesh))
+    return false;
+  for (std::size_t g = 0; g < animated.garments.size(); ++g)
+    if (!same(animated.garments[g].mesh, validation.garments[g].mesh)) return false;
+  return true;
+}
+
 }  // namespace
 
 ValidateResult run_validate(const ValidateOptions& given) {
@@ -106,13 +121,17 @@ ValidateResult run_validate(const ValidateOptions& given) {
           fmt::format("garment {}: shape changed beyond its threshold: {}", g, violation));
   }
   std::vector<ClipFindings> clips;
+  // The page plays one clip: the posed meshes of each are kept until it is chosen.
+  std::vector<ClipPoses> poses;
+  std::optional<AnimatedScene> animated;
   if (!options.animations.empty()) {
-    const AnimatedScene scene = read_animated_scene(options.garments, options.garment_meshes,
-                                                    options.avatar, options.avatar_meshes);
+    animated = read_animated_scene(options.garments, options.garment_meshes, options.avatar,
+                                   options.avatar_meshes);
     nlohmann::ordered_json& section = result.report["animations"];
     section = nlohmann::ordered_json::array();
     for (const ChosenClip& clip : choose_clips(options.animations, options.avatar)) {
-      clips.push_back(check_clip(scene, clip, options.fps));
+      ClipPoses* kept = options.html.empty() ? nullptr : &poses.emplace_back();
+      clips.push_back(check_clip(*animated, clip, options.fps, kept));
       section.push_back(to_json(clips.back()));
     }
   }
@@ -122,8 +141,18 @@ ValidateResult run_validate(const ValidateOptions& given) {
   StagedFiles outputs;
   if (!options.report.empty()) write_json_file(outputs.stage(options.report), result.report);
   if (!options.marks.empty()) write_marks_obj(outputs.stage(options.marks), validation);
-  if (!options.html.empty())
-    write_validation_page(outputs.stage(options.html), validation, result.report);
+  if (!options.html.empty()) {
+    std::optional<PageAnimation> animation;
+    if (!clips.empty() && same_page_meshes(*animated, validation)) {
+      std::vector<const ClipFindings*> checked;
+      for (const ClipFindings& clip : clips) checked.push_back(&clip);
+      const std::size_t played = page_clip(checked);
+      animation =
+          page_animation(clips[played], poses[played], animated->avatar.mesh.faces, clips.size());
+    }
+    write_validation_page(outputs.stage(options.html), validation, result.report,
+                          std::move(animation));
+  }
   outputs.commit();
   result.summary = validation_summary(validation);
   for (std::size_t g = 0; g < shapes.size(); ++g)

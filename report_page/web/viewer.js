@@ -131,6 +131,8 @@ class GarmentView {
     stripeNoFit(material, scene.colours);
     this.mesh = new THREE.Mesh(this.geometry, material);
     this.shapeIndex = -1;
+    this.frameShape = null;  // a frame of the clip, drawn instead of the shapes
+    this.drawn = null;
   }
 
   shapeFor(index) { return this.shapes[Math.min(index, this.shapes.length - 1)]; }
@@ -151,8 +153,9 @@ class GarmentView {
     return heatColour(this.colours.heat_stops, shape.distance[v] / this.heatRange);
   }
 
+  // Draws shape `index`, or the clip's frame when one is set (setFrame).
   show(index, highlightNoFit) {
-    const shape = this.shapeFor(index);
+    const shape = this.frameShape ?? this.shapeFor(index);
     const position = this.geometry.getAttribute('position');
     const normal = this.geometry.getAttribute('normal');
     const colour = this.geometry.getAttribute('color');
@@ -172,6 +175,7 @@ class GarmentView {
     this.geometry.computeBoundingSphere();
     this.geometry.computeBoundingBox();
     this.shapeIndex = index;
+    this.drawn = shape;
   }
 
   // Whether any face around vertex v is drawn in a flag colour instead of the heat map.
@@ -202,6 +206,60 @@ function stripeNoFit(material, colours) {
               `if (vNoFit > 0.5 && mod(gl_FragCoord.x + gl_FragCoord.y, ${period}) < ${width})
                  diffuseColor.rgb = noFitColour;`);
   };
+}
+
+// The clip of the page (report_page/page_animation.hpp): every frame's garment positions,
+// distances and marked faces, and the avatar's positions at its key frames, between which
+// it is interpolated linearly.
+class ClipFrames {
+  constructor(entry, garments) {
+    this.entry = entry;
+    this.count = entry.frame_count;
+    this.garments = entry.garments.map((g, i) => ({
+      view: garments[i],
+      positions: positionsOf(g.positions),
+      distance: valuesOf(g.distance),
+      marked: g.marked,
+    }));
+    this.avatarKeys = entry.avatar.frames;
+    this.avatarPositions = positionsOf(entry.avatar.positions);
+    this.avatarSize = this.avatarPositions.length / this.avatarKeys.length;
+  }
+
+  // The garment's shape in frame f, in the form GarmentView draws.
+  garmentShape(g, f) {
+    const { view, positions, distance, marked } = this.garments[g];
+    const n = view.shapes[0].positions.length;
+    const framePositions = positions.subarray(f * n, (f + 1) * n);
+    const flags = new Uint8Array(view.faceCount);
+    for (const face of marked[f]) flags[face] = 1;
+    return { label: `frame ${f}`, positions: framePositions,
+             normals: vertexNormals(framePositions, view.faces),
+             distance: distance.subarray((f * n) / 3, ((f + 1) * n) / 3), marked: flags, ease: null };
+  }
+
+  // The avatar's positions in frame f: its key frame, or between the two around it.
+  avatarAt(f, out) {
+    const keys = this.avatarKeys;
+    let k = 0;
+    while (k + 1 < keys.length && keys[k + 1] <= f) ++k;
+    const size = this.avatarSize;
+    const a = this.avatarPositions.subarray(k * size, (k + 1) * size);
+    if (keys[k] === f || k + 1 === keys.length) {
+      out.set(a);
+      return;
+    }
+    const b = this.avatarPositions.subarray((k + 1) * size, (k + 2) * size);
+    const w = (f - keys[k]) / (keys[k + 1] - keys[k]);
+    for (let i = 0; i < size; ++i) out[i] = (1 - w) * a[i] + w * b[i];
+  }
+
+  // "frame 12 of 252, 0.400 s: 3 garment–avatar, 0 self, 0 layer pairs"
+  describe(f) {
+    const e = this.entry;
+    return `frame ${f} of ${this.count}, ${e.times[f].toFixed(3)} s: ` +
+        `${e.avatar_pairs[f]} garment–avatar, ${e.self_pairs[f]} self, ${e.layer_pairs[f]} layer pairs`;
+  }
 }
 
 function avatarMesh(entry, colours) {
@@ -282,15 +340,77 @@ function start() {
   resize();
 
   const buttons = [...document.querySelectorAll('.shape-button')];
+  // The clip's frame shown, or -1 for the files' pose (the shapes).
+  let frame = -1;
+  const clip = scene.animation ? new ClipFrames(scene.animation, garments) : null;
+  const restAvatar = avatar.geometry.getAttribute('position').array.slice();
   const setShape = (index) => {
     shapeIndex = Math.max(0, Math.min(index, shapeCount - 1));
     for (const g of garments) g.show(shapeIndex, highlightNoFit);
     for (const b of buttons) b.classList.toggle('active', Number(b.dataset.shape) === shapeIndex);
     render();
   };
-  for (const b of buttons) b.addEventListener('click', () => setShape(Number(b.dataset.shape)));
+  for (const b of buttons)
+    b.addEventListener('click', () => { play(false); setFrame(-1); setShape(Number(b.dataset.shape)); });
+  // Poses the avatar and the garments to frame f of the clip; -1 returns to the files' pose.
+  const setFrame = (f) => {
+    if (!clip) return;
+    frame = f < 0 ? -1 : Math.min(Math.round(f), clip.count - 1);
+    const position = avatar.geometry.getAttribute('position');
+    if (frame < 0) position.array.set(restAvatar);
+    else clip.avatarAt(frame, position.array);
+    position.needsUpdate = true;
+    const normal = avatar.geometry.getAttribute('normal');
+    normal.array.set(vertexNormals(position.array, avatar.geometry.index.array));
+    normal.needsUpdate = true;
+    avatar.geometry.computeBoundingSphere();
+    garments.forEach((g, i) => { g.frameShape = frame < 0 ? null : clip.garmentShape(i, frame); });
+    const slider = document.getElementById('gr-frame');
+    if (frame >= 0) slider.value = String(frame);
+    document.getElementById('gr-frame-info').textContent =
+        frame < 0 ? 'pose as given' : clip.describe(frame);
+    setShape(shapeIndex);
+  };
+  let playing = null;  // the interval timer while the clip plays
+  const play = (on) => {
+    if (!clip || on === (playing !== null)) return;
+    const button = document.getElementById('gr-play');
+    if (on) {
+      if (frame < 0 || frame === clip.count - 1) setFrame(0);
+      playing = setInterval(() => setFrame((frame + 1) % clip.count), 1000 / scene.animation.fps);
+    } else {
+      clearInterval(playing);
+      playing = null;
+    }
+    button.textContent = on ? 'pause' : 'play';
+    button.classList.toggle('active', on);
+  };
+  if (clip) {
+    document.getElementById('gr-frame').addEventListener('input', (event) => {
+      play(false);
+      setFrame(Number(event.target.value));
+    });
+    document.getElementById('gr-play').addEventListener('click', () => play(playing === null));
+    document.getElementById('gr-worst')?.addEventListener('click', (event) => {
+      play(false);
+      setFrame(Number(event.target.dataset.frame));
+    });
+    document.getElementById('gr-rest').addEventListener('click', () => {
+      play(false);
+      setFrame(-1);
+    });
+    for (const mark of document.querySelectorAll('.frame-marks .mark'))
+      mark.addEventListener('click', () => { play(false); setFrame(Number(mark.dataset.frame)); });
+  }
   document.addEventListener('keydown', (event) => {
-    if (event.key === 't' || event.key === 'T') setShape((shapeIndex + 1) % shapeCount);
+    if (event.key === 't' || event.key === 'T') {
+      setFrame(-1);
+      setShape((shapeIndex + 1) % shapeCount);
+    }
+    if (clip && event.key === ' ' && event.target === document.body) {
+      event.preventDefault();
+      play(playing === null);
+    }
   });
   // Only pages with an ease measure have this box.
   document.getElementById('gr-ease')?.addEventListener('change', (event) => {
@@ -332,13 +452,20 @@ function start() {
     shapeCount,
     shape: () => shapeIndex,
     setShape,
+    // The clip: its frame count (0 without one), the frame shown (-1: the files' pose),
+    // whether it plays, and the frame to show.
+    frameCount: clip ? clip.count : 0,
+    frame: () => frame,
+    playing: () => playing !== null,
+    setFrame,
     render,
     vertexCount: (g) => garments[g].shapes[0].positions.length / 3,
-    // Page coordinates (CSS pixels) of vertex v of garment g in the shape shown, whether it
-    // is the nearest surface along its line of sight, and the colour it was given.
+    // Page coordinates (CSS pixels) of vertex v of garment g as drawn (the shape or the
+    // clip's frame shown), whether it is the nearest surface along its line of sight, and
+    // the colour it was given.
     probe(g, v) {
       const garment = garments[g];
-      const shape = garment.shapeFor(shapeIndex);
+      const shape = garment.drawn;
       const point = new THREE.Vector3().fromArray(shape.positions, 3 * v);
       const ndc = point.clone().project(camera);
       const rect = renderer.domElement.getBoundingClientRect();

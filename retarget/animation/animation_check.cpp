@@ -27,13 +27,6 @@ std::vector<FacePair> sorted_pairs(std::vector<FacePair> pairs, bool order_each)
   return pairs;
 }
 
-std::size_t count_not_in(const std::vector<FacePair>& pairs, const std::vector<FacePair>& rest,
-                         bool order_each) {
-  return static_cast<std::size_t>(std::count_if(pairs.begin(), pairs.end(), [&](const FacePair& p) {
-    return !std::binary_search(rest.begin(), rest.end(), order_each ? ordered(p) : p);
-  }));
-}
-
 void read_part(const std::string& path, const std::vector<std::string>& meshes, bool whole_skin,
                const char* role, AnimatedScene::Part& part) {
   part.path = path;
@@ -123,15 +116,39 @@ FrameFindings check_posed_frame(const AnimatedScene& scene,
                                 const TriangleMesh& avatar, double time) {
   FrameFindings frame;
   frame.time = time;
+  frame.crossing_faces.resize(garments.size());
+  const auto not_at_rest = [](const std::vector<FacePair>& pairs, const std::vector<FacePair>& rest,
+                              bool order_each) {
+    std::vector<FacePair> kept;
+    for (const FacePair& p : pairs)
+      if (!std::binary_search(rest.begin(), rest.end(), order_each ? ordered(p) : p))
+        kept.push_back(p);
+    return kept;
+  };
   std::size_t pair = 0;
   for (std::size_t g = 0; g < garments.size(); ++g) {
-    frame.avatar_pairs += find_intersecting_face_pairs(garments[g], avatar, 0).count;
-    frame.self_pairs += count_not_in(find_self_intersecting_face_pairs(garments[g]).pairs.pairs,
-                                     scene.rest_self_pairs[g], true);
-    for (std::size_t h = g + 1; h < garments.size(); ++h, ++pair)
-      frame.layer_pairs +=
-          count_not_in(find_intersecting_face_pairs(garments[g], garments[h]).pairs,
-                       scene.rest_layer_pairs[pair], false);
+    std::vector<int>& faces = frame.crossing_faces[g];
+    const std::vector<FacePair> on_avatar = find_intersecting_face_pairs(garments[g], avatar).pairs;
+    frame.avatar_pairs += on_avatar.size();
+    for (const FacePair& p : on_avatar) faces.push_back(p.first);
+    const std::vector<FacePair> self = not_at_rest(
+        find_self_intersecting_face_pairs(garments[g]).pairs.pairs, scene.rest_self_pairs[g], true);
+    frame.self_pairs += self.size();
+    for (const FacePair& p : self) faces.insert(faces.end(), {p.first, p.second});
+    for (std::size_t h = g + 1; h < garments.size(); ++h, ++pair) {
+      const std::vector<FacePair> layer =
+          not_at_rest(find_intersecting_face_pairs(garments[g], garments[h]).pairs,
+                      scene.rest_layer_pairs[pair], false);
+      frame.layer_pairs += layer.size();
+      for (const FacePair& p : layer) {
+        faces.push_back(p.first);
+        frame.crossing_faces[h].push_back(p.second);
+      }
+    }
+  }
+  for (std::vector<int>& faces : frame.crossing_faces) {
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   }
   return frame;
 }
@@ -154,7 +171,8 @@ std::optional<std::size_t> ClipFindings::worst_frame() const {
   return worst;
 }
 
-ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, double fps) {
+ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, double fps,
+                        ClipPoses* poses) {
   const Stopwatch stopwatch;
   const AnimationClip& clip = chosen.clip;
   ClipFindings findings;
@@ -173,6 +191,10 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
   }
   const std::vector<double> times = frame_times(clip, fps);
   findings.frames.resize(times.size());
+  if (poses) {
+    poses->avatar.assign(times.size(), MatrixX3d());
+    poses->garments.assign(times.size(), std::vector<MatrixX3d>());
+  }
   tbb::parallel_for(std::size_t{0}, times.size(), [&](std::size_t f) {
     FrameFindings& frame = findings.frames[f];
     frame.time = times[f];
@@ -186,6 +208,10 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
                                                   garment_bindings[g], frame.time),
                                clip.name, frame.time));
     frame = check_posed_frame(scene, garments, avatar, frame.time);
+    if (poses) {
+      poses->avatar[f] = avatar.vertices;
+      for (const TriangleMesh& garment : garments) poses->garments[f].push_back(garment.vertices);
+    }
   });
   findings.seconds = stopwatch.seconds();
   return findings;

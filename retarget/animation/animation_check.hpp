@@ -46,6 +46,8 @@ struct FrameFindings {
   std::size_t avatar_pairs = 0;  ///< garment–avatar
   std::size_t self_pairs = 0;    ///< garment self pairs not crossing at rest
   std::size_t layer_pairs = 0;   ///< garment–garment pairs not crossing at rest
+  /// Per garment, its faces in the pairs counted (sorted, each once).
+  std::vector<std::vector<int>> crossing_faces;
   std::size_t total() const { return avatar_pairs + self_pairs + layer_pairs; }
 };
 
@@ -75,12 +77,21 @@ struct ClipFindings {
   std::optional<std::size_t> worst_frame() const;
 };
 
+/// The meshes of every sampled frame of a clip as check_clip posed and checked them, in the
+/// files' frame and units.
+struct ClipPoses {
+  std::vector<MatrixX3d> avatar;                 ///< per frame, #Va×3
+  std::vector<std::vector<MatrixX3d>> garments;  ///< per frame, per garment #Vg×3
+};
+
 /// Samples `clip` at `fps` from its start to its end, poses the avatar and garments by
 /// their skins (joints matched by name; a garment's morph weights from the clip of the same
 /// name in its own file, where it has one) and checks every frame exactly: garment–avatar,
-/// self and layer pairs (validate_meshes). Frames run in parallel.
+/// self and layer pairs (validate_meshes). Frames run in parallel. With `poses`, the posed
+/// meshes of every frame are kept there too (for the report page's frame slider).
 /// @pre fps > 0.
-ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& clip, double fps);
+ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& clip, double fps,
+                        ClipPoses* poses = nullptr);
 
 /// The report section of one clip: counts, the first and worst frames, and per frame its
 /// time and pair counts.

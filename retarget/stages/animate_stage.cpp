@@ -129,7 +129,8 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
   const AnimatedScene written = read_animated_scene(input.written_files, input.written_meshes,
                                                     input.avatar, input.avatar_meshes);
   for (std::size_t c = 0; c < clips.size(); ++c) {
-    output.clips[c].written = check_clip(written, clips[c], options.fps);
+    output.clips[c].written =
+        check_clip(written, clips[c], options.fps, &output.clips[c].written_poses);
     progress.log("animate", "{} (as written)", clip_summary(output.clips[c].written));
   }
   output.seconds = stopwatch.seconds();

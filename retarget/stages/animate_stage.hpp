@@ -44,7 +44,8 @@ struct AnimationReport {
   double settle_seconds = 0.0;
   int corrections_failed = 0;
   double correction_seconds = 0.0;
-  ClipFindings written;  ///< the written files played, corrections included
+  ClipFindings written;     ///< the written files played, corrections included
+  ClipPoses written_poses;  ///< the meshes of every frame of `written`, as checked
 };
 
 struct AnimateOutput {

@@ -1,7 +1,8 @@
 // One browser check of a report page, in Debian's headless Chromium driven by playwright-core.
 //
 //   node check_report_page.mjs --page FILE
-//        --check console|network|canvas|garment-pixels|ease-pixels|garment-toggle
+//        --check console|network|canvas|garment-pixels|ease-pixels|garment-toggle|frame-slider|
+//                frame-pixels
 //                              [--screenshot OUT.png]
 //
 // Exits 0 when the check passes, 1 with the reason when it fails. The page is opened from
@@ -251,6 +252,108 @@ const checks = {
     }
     expect(errors.length === 0, `console errors: ${errors.join(' | ')}`);
     return summary.join('; ');
+  },
+
+  // A page with a clip: the slider poses the garment (its pixels and vertices move between
+  // the first and the last frame), the ticks mark the crossing frames with the first and the
+  // worst where the page data puts them, the worst frame's button shows it, and play
+  // advances the frames until paused.
+  async 'frame-slider'(browser, url, options) {
+    const { page, errors } = await openReport(browser, url);
+    const clip = await page.evaluate(() => {
+      const a = JSON.parse(document.getElementById('gr-scene').textContent).animation;
+      if (!a) return null;
+      const pairs = a.times.map((_, f) => a.avatar_pairs[f] + a.self_pairs[f] + a.layer_pairs[f]);
+      return { count: a.frame_count, worst: a.worst_frame, first: a.first_crossing, pairs };
+    });
+    expect(clip !== null, 'the page has no animation');
+    expect(clip.count >= 2, `the clip has ${clip.count} frames`);
+    expect(await page.evaluate(() => window.grView.frameCount) === clip.count,
+           'grView.frameCount is not the page data\'s frame count');
+    expect(await page.evaluate(() => window.grView.frame()) === -1, 'the page opens on a frame');
+
+    // Ticks: one per crossing frame; the worst and the first where the page data says.
+    const crossing = clip.pairs.filter((p) => p > 0).length;
+    const ticks = await page.locator('.frame-marks .mark').count();
+    expect(ticks === crossing, `${ticks} ticks for ${crossing} crossing frames`);
+    const maxPairs = Math.max(...clip.pairs);
+    if (maxPairs === 0) {
+      // Every frame free (a certified retarget): nothing to mark, no worst frame to go to.
+      expect(clip.worst === null && clip.first === null, 'a worst frame in a clip that never crosses');
+      expect(await page.locator('#gr-worst').count() === 0, 'a worst-frame button with no crossing');
+    } else {
+      const worstTick = Number(await page.locator('#gr-mark-worst').getAttribute('data-frame'));
+      expect(worstTick === clip.worst, `worst-frame tick at ${worstTick}, page data ${clip.worst}`);
+      const firstTick = clip.first === clip.worst ? worstTick
+        : Number(await page.locator('#gr-mark-first').getAttribute('data-frame'));
+      expect(firstTick === clip.first, `first-crossing tick at ${firstTick}, page data ${clip.first}`);
+      expect(clip.pairs[clip.worst] === maxPairs && clip.pairs.indexOf(maxPairs) === clip.worst,
+             `frame ${clip.worst} is not the first with the most pairs (${maxPairs})`);
+    }
+
+    // The slider poses the garment: with the avatar hidden, the first and last frames differ.
+    await page.locator('#gr-body').uncheck();
+    const slider = page.locator('#gr-frame');
+    const canvas = page.locator('#gr-view canvas');
+    const shotAt = async (f) => {
+      await slider.fill(String(f));
+      expect(await page.evaluate(() => window.grView.frame()) === f, `the slider at ${f} shows another frame`);
+      const info = await page.locator('#gr-frame-info').textContent();
+      expect(info.startsWith(`frame ${f} of ${clip.count}`), `frame ${f}: the line reads "${info}"`);
+      return canvas.screenshot();
+    };
+    const vertices = (f) => page.evaluate((frame) => {
+      window.grView.setFrame(frame);
+      const n = window.grView.vertexCount(0);
+      const stride = Math.max(1, Math.floor(n / 200));
+      const out = [];
+      for (let v = 0; v < n; v += stride) out.push(window.grView.probe(0, v));
+      return out;
+    }, f);
+    const last = clip.count - 1;
+    const firstShot = await shotAt(0);
+    const lastShot = await shotAt(last);
+    if (options.screenshot) {
+      writeFileSync(options.screenshot.replace(/\.png$/, '_first.png'), firstShot);
+      writeFileSync(options.screenshot.replace(/\.png$/, '_last.png'), lastShot);
+    }
+    const different = await analysePngs(browser, [firstShot, lastShot], countDifferent, { tolerance: DRAWN });
+    expect(different > 1000, `frames 0 and ${last} differ in only ${different} garment pixels`);
+    const [from, to] = [await vertices(0), await vertices(last)];
+    const moved = from.map((p, i) => Math.hypot(p.x - to[i].x, p.y - to[i].y));
+    const largest = Math.max(...moved);
+    expect(largest > 20, `garment vertices move at most ${largest.toFixed(1)} px between frames`);
+
+    // The worst frame's button.
+    if (clip.worst !== null) {
+      await page.locator('#gr-worst').click();
+      expect(await page.evaluate(() => window.grView.frame()) === clip.worst, 'the worst-frame button shows another frame');
+    }
+
+    // Play advances the frames, pause stops them.
+    await slider.fill('0');
+    await page.locator('#gr-play').click();
+    await page.waitForTimeout(500);
+    const playing = await page.evaluate(() => [window.grView.playing(), window.grView.frame()]);
+    expect(playing[0] && playing[1] > 0, `after 0.5 s of play: playing ${playing[0]}, frame ${playing[1]}`);
+    await page.locator('#gr-play').click();
+    const paused = await page.evaluate(() => window.grView.frame());
+    await page.waitForTimeout(300);
+    expect(await page.evaluate(() => window.grView.frame()) === paused, 'the frames advance after pause');
+    expect(errors.length === 0, `console errors: ${errors.join(' | ')}`);
+    return `${clip.count} frames, ${ticks} crossing ticks, worst ${clip.worst}, first ${clip.first}; ` +
+        `${different} pixels differ between frames 0 and ${last}, vertices move up to ` +
+        `${largest.toFixed(0)} px; play reached frame ${playing[1]} in 0.5 s`;
+  },
+
+  // A clip's last frame: garment vertices seen from the camera are drawn where that frame
+  // poses them, in the colour of their distance to the avatar posed with them.
+  async 'frame-pixels'(browser, url, options) {
+    return garmentPixels(browser, url, options, async (page) => {
+      const last = await page.evaluate(() => window.grView.frameCount - 1);
+      expect(last > 0, 'the page has no clip');
+      await page.evaluate((f) => window.grView.setFrame(f), last);
+    });
   },
 
   // The ease colour mode: the box switches the garment to the ease map and its legend.

@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "report_page/page_test_support.hpp"
 #include "scenes/synthetic/bending_arm.hpp"
+#include "test_support.hpp"
 
 namespace gr {
 namespace {
@@ -50,6 +52,68 @@ TEST_CASE("validate --animation finds the frames where a skinned sleeve crosses 
   CHECK(first > 0);
   CHECK(clip["crossing_frames"].get<int>() == 31 - first);
   CHECK(clip["worst_frame"]["pairs"].get<int>() >= frames.at(first)["avatar_pairs"].get<int>());
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_CASE("validate --animation --html puts the clip's frames on the page's slider",
+          "[validate][animation]") {
+  const auto dir = arm_scene("validate_animation_page");
+  const test::CliRun run =
+      test::run_cli({"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+                     (dir / "arm.glb").string(), "--animation", "bend", "--report",
+                     (dir / "report.json").string(), "--html", (dir / "page.html").string()},
+                    "validate_animation_page");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 1);
+  const nlohmann::json clip = read_json(dir / "report.json")["animations"].at(0);
+  const std::string html = read_text(dir / "page.html");
+  const nlohmann::json page = test::scene_of(html)["animation"];
+  CHECK(page["clip"] == "bend");
+  CHECK(page["fps"] == 30.0);
+  CHECK(page["clip_count"] == 1);
+  CHECK(page["frame_count"] == clip["frame_count"]);
+  CHECK(page["first_crossing"] == clip["first_crossing_frame"]["index"]);
+  CHECK(page["worst_frame"] == clip["worst_frame"]["index"]);
+  const nlohmann::json& frames = clip["frames"];
+  REQUIRE(page["times"].size() == frames.size());
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    CAPTURE(f);
+    CHECK(page["times"][f] == frames[f]["time"]);
+    CHECK(page["avatar_pairs"][f] == frames[f]["avatar_pairs"]);
+    CHECK(page["self_pairs"][f] == frames[f]["self_pairs"]);
+    CHECK(page["layer_pairs"][f] == frames[f]["layer_pairs"]);
+    const bool crossing =
+        frames[f]["avatar_pairs"].get<int>() + frames[f]["self_pairs"].get<int>() > 0;
+    CHECK(page["garments"][0]["marked"][f].empty() == !crossing);
+  }
+  CHECK(test::between(html, "id=\"gr-mark-worst\" data-frame=\"", "\"") ==
+        std::to_string(clip["worst_frame"]["index"].get<int>()));
+  // The avatar and the sleeve in every frame.
+  CHECK(page["avatar"]["frames"].size() == frames.size());
+}
+
+TEST_CASE("the dress's validation page through the idle clip stays under 20 MB",
+          "[validate][animation]") {
+  const auto dir = test::fresh_temp_dir("validate_animation_dress_page");
+  const test::CliRun run = test::run_cli(
+      {"validate", "--garment", test::shared_data("real/female-pose-standing.glb"),
+       "--garment-mesh", "Wolf3D_Outfit_Top.002", "--avatar",
+       test::shared_data("real/female-full-body.glb"), "--avatar-mesh", "body.001", "--animation",
+       test::shared_data("real/female-idle.glb"), "--html", (dir / "page.html").string()},
+      "validate_animation_dress_page");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 1);
+  CHECK_THAT(run.out, Catch::Contains("252 frames at 30 fps"));
+  const auto size = std::filesystem::file_size(dir / "page.html");
+  CAPTURE(size);
+  CHECK(size < 20'000'000);
+  const nlohmann::json page = test::scene_of(read_text(dir / "page.html"))["animation"];
+  CHECK(page["frame_count"] == 252);
+  CHECK(page["avatar"]["frames"].size() == 252);
 }
 
 TEST_CASE("a clip from another file drives the joints of the same names", "[validate][animation]") {
@@ -116,6 +180,14 @@ TEST_CASE("retarget --animation writes a sleeve certified in every frame, and va
   CHECK(clip["corrected_frames"].get<int>() ==
         clip["skinning_alone"]["crossing_frames"].get<int>());
   CHECK(clip["seconds_per_frame"].get<double>() > 0.0);
+  // The page plays the written file through the clip: every frame free.
+  const nlohmann::json page = test::scene_of(read_text(out / "report.html"))["animation"];
+  CHECK(page["clip"] == "bend");
+  CHECK(page["frame_count"] == 31);
+  CHECK(page["worst_frame"].is_null());
+  CHECK(page["first_crossing"].is_null());
+  for (std::size_t f = 0; f < 31; ++f)
+    CHECK(page["avatar_pairs"][f].get<int>() + page["self_pairs"][f].get<int>() == 0);
 
   // The written file played on its own, by the validator, with the clip of the arm's file.
   const test::CliRun check =
