@@ -193,11 +193,12 @@ int main(int argc, char** argv) {
       }
       const gr::AnimationReport& a = r.animation->clips.front();
       const double frames = static_cast<double>(a.written.frames.size());
-      std::printf("| %s | %d | %s | %zu | %zu | %d | %d | %d | %d | %zu | %.2f | %.1f | %.1f | %s |\n",
-                  garment.label.c_str(), r.normalize.garment_faces, fs::path(clip).stem().c_str(),
-                  a.written.frames.size(), a.skinned.crossing_frames(), a.corrected_frames,
-                  a.solved_frames, a.morph_targets, a.corrections_failed, a.written.crossing_frames(), a.correction_seconds / frames,
-                  wall.seconds(), cpu, gr::to_string(result.status));
+      std::printf(
+          "| %s | %d | %s | %zu | %zu | %d | %d | %d | %d | %zu | %.2f | %.1f | %.1f | %s |\n",
+          garment.label.c_str(), r.normalize.garment_faces, fs::path(clip).stem().c_str(),
+          a.written.frames.size(), a.skinned.crossing_frames(), a.corrected_frames, a.solved_frames,
+          a.morph_targets, a.corrections_failed, a.written.crossing_frames(),
+          a.correction_seconds / frames, wall.seconds(), cpu, gr::to_string(result.status));
       std::fflush(stdout);
     }
   }

@@ -20,6 +20,10 @@ namespace {
 /// as the prepare stage leaves them for the solve.
 constexpr int kTangleRings = 2;
 
+/// Newton steps of the garment settling toward its skinned place: every step stays free
+/// (CCD), and what a frame leaves the next one goes on with.
+constexpr int kSettleIterations = 8;
+
 /// Tries of a frame, each in steps half as long as the one before.
 constexpr int kAttempts = 3;
 
@@ -193,8 +197,8 @@ std::vector<MatrixX3d> bind_offsets(const AnimatedScene& scene, const MergedGarm
 
 ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen, double fps,
                             const ClipFindings& skinning_alone,
-                            const RetargetParameters& parameters,
-                            double max_step, Interrupter& interrupter) {
+                            const RetargetParameters& parameters, double max_step,
+                            Interrupter& interrupter) {
   const Stopwatch stopwatch;
   StopOnly quiet(interrupter);
   const AnimationClip& clip = chosen.clip;
@@ -205,6 +209,8 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
     garment_bindings.push_back(bind_clip(*part.asset.gltf.skin, clip, chosen.translations));
 
   const UnitFrame units = unit_frame(scene.avatar.mesh.vertices);
+  RetargetParameters settle_parameters = parameters;
+  settle_parameters.fit_max_iterations = kSettleIterations;
   const MergedGarments merged = merge_garments(scene);
   const TriangleMesh rest{units.to_solver(merged.rest.vertices), merged.rest.faces};
   const std::vector<int> tangles =
@@ -301,7 +307,7 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
           garment_before = units.to_solver(skinned);
         } else {
           const Stopwatch settle_time;
-          FitResult settled = fit_garment(settling, pushed.garment, parameters, quiet);
+          FitResult settled = fit_garment(settling, pushed.garment, settle_parameters, quiet);
           result.settle_seconds += settle_time.seconds();
           result.settle_iterations += settled.solve.iterations;
           garment_before = std::move(settled.garment);
@@ -313,8 +319,7 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
     previous = target;
     ++result.solved_frames;
     result.target_of_frame[f] = static_cast<int>(result.targets.size());
-    result.targets.push_back(
-        bind_offsets(scene, merged, at_target, units.to_file(garment_before)));
+    result.targets.push_back(bind_offsets(scene, merged, at_target, units.to_file(garment_before)));
   }
   result.seconds = stopwatch.seconds();
   return result;

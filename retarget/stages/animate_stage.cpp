@@ -68,9 +68,8 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
     AnimationReport report;
     report.skinned = check_clip(scene, clip, options.fps);
     progress.log("animate", "{} (skinning alone)", clip_summary(report.skinned));
-    const ClipCorrection correction =
-        correct_clip(scene, clip, options.fps, report.skinned, options.parameters,
-                     options.max_step, progress);
+    const ClipCorrection correction = correct_clip(scene, clip, options.fps, report.skinned,
+                                                   options.parameters, options.max_step, progress);
     report.steps = correction.steps;
     report.solves = correction.solves;
     report.push_iterations = correction.push_iterations;
@@ -88,9 +87,19 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
       const int t = correction.target_of_frame[f];
       if (t < 0) continue;
       ++report.corrected_frames;
+      double sum = 0.0;
+      Eigen::Index rows = 0;
+      for (const MatrixX3d& offsets : correction.targets[static_cast<std::size_t>(t)]) {
+        const Eigen::VectorXd lengths = offsets.rowwise().norm();
+        sum += lengths.sum();
+        rows += lengths.size();
+        if (lengths.size() > 0) report.max_offset = std::max(report.max_offset, lengths.maxCoeff());
+      }
+      report.mean_offset += rows > 0 ? sum / static_cast<double>(rows) : 0.0;
       for (std::size_t g = 0; g < garments; ++g)
         keyed[g][f] = static_cast<int>(targets[g].deltas.size()) + t;
     }
+    if (report.corrected_frames > 0) report.mean_offset /= report.corrected_frames;
     for (const std::vector<MatrixX3d>& target : correction.targets)
       for (std::size_t g = 0; g < garments; ++g) targets[g].deltas.push_back(target[g]);
     progress.log("animate",
@@ -143,22 +152,23 @@ nlohmann::ordered_json to_json(const AnimateOutput& output) {
     nlohmann::ordered_json skinned = to_json(clip.skinned);
     skinned.erase("frames");
     const std::size_t frames = clip.written.frames.size();
-    clips.push_back({{"skinning_alone", skinned},
-                     {"corrected_frames", clip.corrected_frames},
-                     {"solved_frames", clip.solved_frames},
-                     {"carried_frames", clip.carried_frames},
-                     {"morph_targets", clip.morph_targets},
-                     {"poses_solved", clip.steps},
-                     {"corrections", clip.solves},
-                     {"corrections_failed", clip.corrections_failed},
-                     {"push", {{"newton_iterations", clip.push_iterations},
-                               {"seconds", clip.push_seconds}}},
-                     {"settle", {{"newton_iterations", clip.settle_iterations},
-                                 {"seconds", clip.settle_seconds}}},
-                     {"correction_seconds", clip.correction_seconds},
-                     {"seconds_per_frame",
-                      frames > 0 ? clip.correction_seconds / static_cast<double>(frames) : 0.0},
-                     {"written", to_json(clip.written)}});
+    clips.push_back(
+        {{"skinning_alone", skinned},
+         {"corrected_frames", clip.corrected_frames},
+         {"solved_frames", clip.solved_frames},
+         {"carried_frames", clip.carried_frames},
+         {"morph_targets", clip.morph_targets},
+         {"poses_solved", clip.steps},
+         {"corrections", clip.solves},
+         {"corrections_failed", clip.corrections_failed},
+         {"offset", {{"mean", clip.mean_offset}, {"max", clip.max_offset}}},
+         {"push", {{"newton_iterations", clip.push_iterations}, {"seconds", clip.push_seconds}}},
+         {"settle",
+          {{"newton_iterations", clip.settle_iterations}, {"seconds", clip.settle_seconds}}},
+         {"correction_seconds", clip.correction_seconds},
+         {"seconds_per_frame",
+          frames > 0 ? clip.correction_seconds / static_cast<double>(frames) : 0.0},
+         {"written", to_json(clip.written)}});
   }
   return {{"certified", output.certified()}, {"seconds", output.seconds}, {"clips", clips}};
 }

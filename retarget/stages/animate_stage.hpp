@@ -42,6 +42,10 @@ struct AnimationReport {
   int settle_iterations = 0;
   double push_seconds = 0.0;
   double settle_seconds = 0.0;
+  /// How far the corrections move the garment's vertices (avatar units): the mean over the
+  /// corrected frames of their mean offset, and the largest offset.
+  double mean_offset = 0.0;
+  double max_offset = 0.0;
   int corrections_failed = 0;
   double correction_seconds = 0.0;
   ClipFindings written;     ///< the written files played, corrections included
