@@ -136,7 +136,12 @@ nlohmann::json to_json(const RetargetReport& r) {
       {"fit",
        {{"newton_iterations", r.fit.newton_iterations},
         {"factorizations", r.fit.factorizations},
-        {"status", r.fit.status}}},
+        {"status", r.fit.status},
+        {"firmer_pattern",
+         r.fit.firmer_pattern
+             ? nlohmann::json{{"first_mean_edge_change", r.fit.first_mean_edge_change},
+                              {"first_p95_edge_change", r.fit.first_p95_edge_change}}
+             : nlohmann::json(nullptr)}}},
       {"energies", r.fit.energies},
       {"min_distance",
        {{"normalized", r.fit.min_distance},

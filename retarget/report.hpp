@@ -126,6 +126,12 @@ struct FitReport {
   std::vector<double> loop_offsets;
   double surface_energy_per_area = 0.0;
   double fold_free = 0.0;  ///< as InflateReport::fold_free
+  /// The fit was run again holding the pattern firmer (w_fit_stretch times
+  /// kFirmerPatternFactor), its first result changing edges beyond the run's shape limits,
+  /// and the second kept it better; the first's edge changes, scale free, when so.
+  bool firmer_pattern = false;
+  double first_mean_edge_change = 0.0;
+  double first_p95_edge_change = 0.0;
   int fit_faces = 0;
   int avatar_faces_modelled = 0;
   bool self_contact = true;

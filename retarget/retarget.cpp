@@ -221,10 +221,10 @@ RetargetResult run_retarget(const RetargetOptions& options) {
   record_shrink(report, shrink, inferred);
   if (shrink.failure) return run.no_valid_shrink(*shrink.failure, shrink_input, read.shrink_mode);
   const GridDistanceField distance_field(shrink.grid);
-  const SolveOutput solved =
-      run_solve({scene, normalized, prepared.inherited, shrink_input, shrink_options,
-                 distance_field, inferred, run.frame_writer(scene, normalized)},
-                shrink, report, progress);
+  const SolveOutput solved = run_solve(
+      {scene, normalized, prepared.inherited, shrink_input, shrink_options, distance_field,
+       inferred, run.frame_writer(scene, normalized), options.shape_thresholds},
+      shrink, report, progress);
   if (solved.failure) return run.finish(solved.failure->first, solved.failure->second);
   const MatrixX3d& garment = solved.fit.fit.garment;
 

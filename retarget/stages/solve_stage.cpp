@@ -61,6 +61,18 @@ InflationAttempt attempt_of(const InflationResult& inflation) {
           !inflation.succeeded() && inflation.status != InflationStatus::kSolverFailure};
 }
 
+/// How many times firmer a second fit holds the pattern (w_fit_stretch).
+constexpr double kFirmerPatternFactor = 10.0;
+
+/// How far the scale-free edge changes of `fitted` go beyond the limits: the larger of
+/// mean / limit and p95 / limit (above 1: beyond).
+double edge_excess(const TriangleMesh& garment, const MatrixX3d& fitted,
+                   const ShapeThresholds& limits, ShapeChange& change) {
+  change = measure_shape_change(garment, fitted);
+  return std::max(change.mean_edge_change / limits.mean_edge_change,
+                  change.p95_edge_change / limits.p95_edge_change);
+}
+
 }  // namespace
 
 SolveOutput run_solve(const SolveInput& in, ShrinkOutput& shrink, RetargetReport& report,
@@ -138,6 +150,29 @@ SolveOutput run_solve(const SolveInput& in, ShrinkOutput& shrink, RetargetReport
                        {parameters, report.ease.max_offset,
                         guided ? proxy.paths->fit(inflation.garment) : GuidePath()},
                        progress);
+  // A tight fit can pull a garment's pattern out of shape (a heeled shoe onto a flat
+  // foot): beyond the run's edge limits, the fit runs again from the same inflated garment
+  // holding the pattern firmer, and the result that keeps it better is kept.
+  ShapeChange first;
+  if (in.shape_thresholds.enabled && in.scene.source_skeleton && parameters.w_fit_stretch > 0.0 &&
+      edge_excess(in.normalized.garment, solved.fit.fit.garment, in.shape_thresholds, first) >
+          1.0) {
+    FitOptions firmer{parameters, report.ease.max_offset, {}};
+    firmer.parameters.w_fit_stretch *= kFirmerPatternFactor;
+    progress.log("fit",
+                 "edge change mean {:.3f}, p95 {:.3f} beyond the shape limits: fitting again "
+                 "holding the pattern firmer (w_fit_stretch {:.3g})",
+                 first.mean_edge_change, first.p95_edge_change, firmer.parameters.w_fit_stretch);
+    FitOutput again = run_fit({solver, inflation.garment, source_ease}, firmer, progress);
+    ShapeChange second;
+    if (edge_excess(in.normalized.garment, again.fit.garment, in.shape_thresholds, second) <
+        edge_excess(in.normalized.garment, solved.fit.fit.garment, in.shape_thresholds, first)) {
+      solved.fit = std::move(again);
+      solved.fit.report.firmer_pattern = true;
+      solved.fit.report.first_mean_edge_change = first.mean_edge_change;
+      solved.fit.report.first_p95_edge_change = first.p95_edge_change;
+    }
+  }
   report.proxy.fit_path = solved.fit.fit.guide;
   if (solved.fit.ease_targets) report.ease.targets = std::move(*solved.fit.ease_targets);
   report.fit = solved.fit.report;

@@ -282,6 +282,9 @@ TEST_CASE("Production outfits retarget onto an undressed body of another shape",
   // ../shared/data/real/README.md), each onto a whole body of the other sex.
   const auto [file, mesh] = GENERATE(
       std::make_pair(std::string("female-pose-standing.glb"), std::string("Wolf3D_Outfit_Top.002")),
+      // Heeled shoes onto flat feet: turned flat by their skin, fitted holding their pattern.
+      std::make_pair(std::string("female-pose-standing.glb"),
+                     std::string("Wolf3D_Outfit_Footwear.002")),
       std::make_pair(std::string("male-outfit.glb"), std::string("Wolf3D_Outfit_Bottom")),
       std::make_pair(std::string("male-outfit.glb"), std::string("Wolf3D_Outfit_Top")));
   CAPTURE(file, mesh);
