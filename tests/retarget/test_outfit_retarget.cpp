@@ -74,7 +74,7 @@ TEST_CASE("outfit: three nested sleeves are certified as a whole, in their order
   CHECK(r.inferred.no_fit_inferred);
   CHECK_FALSE(std::filesystem::exists(scene.dir / "out" / "no-fit.txt"));
   REQUIRE(r.inferred.no_fit_layer_paths.size() == 3);
-  for (const std::string& name : {"middle", "outer", "inner"}) {
+  for (const std::string name : {"middle", "outer", "inner"}) {
     const std::filesystem::path list = scene.dir / "out" / (name + ".no-fit.txt");
     REQUIRE(std::filesystem::exists(list));
     const std::size_t rows =
@@ -204,7 +204,7 @@ TEST_CASE("outfit: written as one GLB with a mesh per garment, or a GLB each whe
     CHECK(gltf_mesh_names(written.string()) ==
           std::vector<std::string>{"inner", "middle", "outer"});
     // Each mesh read back is its garment: as many triangles as the sleeve it came from.
-    for (const std::string& name : {"inner", "middle", "outer"})
+    for (const std::string name : {"inner", "middle", "outer"})
       CHECK(read_gltf(written.string(), name).document.faces.size() ==
             read_obj((scene.dir / (name + ".obj")).string()).faces.size());
     REQUIRE(result.report.outfit.has_value());
@@ -219,7 +219,7 @@ TEST_CASE("outfit: written as one GLB with a mesh per garment, or a GLB each whe
     INFO(result.message);
     REQUIRE(result.status == Outcome::kCertified);
     CHECK_FALSE(std::filesystem::exists(scene.dir / "out" / "outfit.glb"));
-    for (const std::string& name : {"inner", "middle", "outer"})
+    for (const std::string name : {"inner", "middle", "outer"})
       CHECK(std::filesystem::is_regular_file(scene.dir / "out" / (name + ".glb")));
   }
 }

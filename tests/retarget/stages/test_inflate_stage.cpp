@@ -32,7 +32,7 @@ TEST_CASE("inflate stage: the avatar grows back to t = 1 with the garment clear 
     names.insert(name);
   };
   const InflateOutput again =
-      run_inflate({framed.solver()}, {framed.parameters.solver, record}, framed.progress);
+      run_inflate({framed.solver()}, {framed.parameters.solver, record, {}}, framed.progress);
   CHECK(names.count("round_00") == 1);
   CHECK(names.size() == static_cast<std::size_t>(again.report.al_rounds) + 1);
 
