@@ -137,11 +137,7 @@ nlohmann::json to_json(const RetargetReport& r) {
        {{"newton_iterations", r.fit.newton_iterations},
         {"factorizations", r.fit.factorizations},
         {"status", r.fit.status},
-        {"firmer_pattern",
-         r.fit.firmer_pattern
-             ? nlohmann::json{{"first_mean_edge_change", r.fit.first_mean_edge_change},
-                              {"first_p95_edge_change", r.fit.first_p95_edge_change}}
-             : nlohmann::json(nullptr)}}},
+        {"firmer_pattern", r.fit.firmer_pattern}}},
       {"energies", r.fit.energies},
       {"min_distance",
        {{"normalized", r.fit.min_distance},
@@ -218,6 +214,9 @@ nlohmann::json to_json(const RetargetReport& r) {
   if (r.repairs.untangle.pairs > 0) report["untangle"] = to_json(r.repairs.untangle);
   report["inherited_crossings"] = to_json(r.repairs.crossings);
   report["pierced_faces"] = to_json(r.repairs.pierced);
+  if (r.fit.firmer_pattern)
+    report["fit"]["first_fit_edge_change"] = {{"mean", r.fit.first_mean_edge_change},
+                                              {"p95", r.fit.first_p95_edge_change}};
   if (r.outfit) report["outfit"] = to_json(*r.outfit, r.certify.shape_thresholds);
   if (!r.shrink.conflict.is_null()) report["shrink_conflict"] = r.shrink.conflict;
   if (!r.previous_result.empty()) report["previous_result"] = r.previous_result;

@@ -128,7 +128,8 @@ struct FitReport {
   double fold_free = 0.0;  ///< as InflateReport::fold_free
   /// The fit was run again holding the pattern firmer (w_fit_stretch times
   /// kFirmerPatternFactor), its first result changing edges beyond the run's shape limits,
-  /// and the second kept it better; the first's edge changes, scale free, when so.
+  /// and the second kept it better; the first's edge changes, scale free, when so
+  /// (report.json fit.first_fit_edge_change).
   bool firmer_pattern = false;
   double first_mean_edge_change = 0.0;
   double first_p95_edge_change = 0.0;
