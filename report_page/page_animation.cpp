@@ -42,21 +42,6 @@ double track_percent(std::size_t f, std::size_t frames) {
 
 }  // namespace
 
-std::optional<std::size_t> PageAnimation::first_crossing() const {
-  for (std::size_t f = 0; f < frames.size(); ++f)
-    if (frames[f].total_pairs() > 0) return f;
-  return std::nullopt;
-}
-
-std::optional<std::size_t> PageAnimation::worst_frame() const {
-  std::optional<std::size_t> worst;
-  for (std::size_t f = 0; f < frames.size(); ++f)
-    if (frames[f].total_pairs() > 0 &&
-        (!worst || frames[f].total_pairs() > frames[*worst].total_pairs()))
-      worst = f;
-  return worst;
-}
-
 std::vector<std::size_t> avatar_key_frames(std::size_t frames, std::size_t stride) {
   std::vector<std::size_t> keys;
   for (std::size_t f = 0; f < frames; f += std::max<std::size_t>(stride, 1)) keys.push_back(f);
@@ -81,6 +66,8 @@ Json page_animation_scene(const ReportPageData& data) {
   const PageAnimation& animation = *data.animation;
   const std::size_t frame_count = animation.frames.size();
   require(frame_count > 0, "the clip has no frame");
+  for (const std::optional<std::size_t>& marked : {animation.first_crossing, animation.worst_frame})
+    require(!marked || *marked < frame_count, "a marked frame lies past the clip's end");
   const std::size_t garments = data.garments.size();
   const Eigen::Index avatar_vertices = data.avatar.vertices.rows();
   std::size_t garment_vertices = 0;
@@ -143,16 +130,16 @@ Json page_animation_scene(const ReportPageData& data) {
       {"avatar_pairs", std::move(avatar_pairs)},
       {"self_pairs", std::move(self_pairs)},
       {"layer_pairs", std::move(layer_pairs)},
-      {"first_crossing", index_or_null(animation.first_crossing())},
-      {"worst_frame", index_or_null(animation.worst_frame())},
+      {"first_crossing", index_or_null(animation.first_crossing)},
+      {"worst_frame", index_or_null(animation.worst_frame)},
       {"avatar", {{"frames", keys}, {"positions", encode_positions(stacked(avatar_frames))}}},
       {"garments", std::move(garment_entries)}};
 }
 
 std::string frame_slider_html(const PageAnimation& animation) {
   const std::size_t frames = animation.frames.size();
-  const std::optional<std::size_t> first = animation.first_crossing();
-  const std::optional<std::size_t> worst = animation.worst_frame();
+  const std::optional<std::size_t> first = animation.first_crossing;
+  const std::optional<std::size_t> worst = animation.worst_frame;
   std::string marks;
   for (std::size_t f = 0; f < frames; ++f) {
     if (animation.frames[f].total_pairs() == 0) continue;

@@ -55,11 +55,10 @@ struct PageAnimation {
   /// Clips that were checked; the page plays `clip`, the report holds them all.
   std::size_t clip_count = 1;
   std::vector<PageFrame> frames;
-
-  /// The first frame with a crossing pair, and the one with the most (the first of equals);
-  /// none when every frame is free.
-  std::optional<std::size_t> first_crossing() const;
-  std::optional<std::size_t> worst_frame() const;
+  /// The first frame with a crossing pair, and the one with the most, as the check that
+  /// counted the pairs names them; none when every frame is free.
+  std::optional<std::size_t> first_crossing{};
+  std::optional<std::size_t> worst_frame{};
 };
 
 /// Everything a report page shows: the avatar, the garments coloured by distance to it,

@@ -137,6 +137,8 @@ PageAnimation page_animation(const ClipFindings& findings, const ClipPoses& pose
   animation.clip = findings.clip;
   animation.fps = findings.fps;
   animation.clip_count = clip_count;
+  animation.first_crossing = findings.first_crossing();
+  animation.worst_frame = findings.worst_frame();
   animation.frames.resize(findings.frames.size());
   tbb::parallel_for(std::size_t{0}, findings.frames.size(), [&](std::size_t f) {
     const FrameFindings& found = findings.frames[f];

@@ -43,6 +43,10 @@ gr::PageAnimation small_clip(const gr::ReportPageData& data, std::size_t frames,
     }
     clip.frames.push_back(std::move(frame));
   }
+  if (crossing_from < frames) {
+    clip.first_crossing = crossing_from;
+    clip.worst_frame = worst;
+  }
   return clip;
 }
 
@@ -82,8 +86,6 @@ TEST_CASE("a page's clip carries every frame's counts, marks and posed meshes",
   CHECK(clip["frame_count"] == 12);
   CHECK(clip["first_crossing"] == 4);
   CHECK(clip["worst_frame"] == 7);
-  CHECK(data.animation->first_crossing() == 4u);
-  CHECK(data.animation->worst_frame() == 7u);
   for (std::size_t f = 0; f < 12; ++f) {
     CAPTURE(f);
     const gr::PageFrame& frame = data.animation->frames[f];

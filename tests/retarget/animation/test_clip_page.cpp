@@ -38,8 +38,8 @@ TEST_CASE("the page's clip agrees frame by frame with the clip's exact check",
 
   const PageAnimation page = page_animation(findings, poses, scene.avatar.mesh.faces, 1);
   REQUIRE(page.frames.size() == findings.frames.size());
-  CHECK(page.first_crossing() == findings.first_crossing());
-  CHECK(page.worst_frame() == findings.worst_frame());
+  CHECK(page.first_crossing == findings.first_crossing());
+  CHECK(page.worst_frame == findings.worst_frame());
   for (std::size_t f = 0; f < page.frames.size(); ++f) {
     CAPTURE(f);
     const PageFrame& frame = page.frames[f];
