@@ -35,17 +35,20 @@ nlohmann::json to_json(const PoseReport& report) {
 
 namespace {
 
-/// Self-intersecting face pairs of `after` that `before` (same faces) does not have, sorted.
-std::vector<FacePair> added_crossings(const TriangleMesh& before, const TriangleMesh& after) {
-  std::vector<FacePair> had = find_self_intersecting_face_pairs(before).pairs.pairs;
-  for (FacePair& p : had) p = {std::min(p.first, p.second), std::max(p.first, p.second)};
-  std::sort(had.begin(), had.end());
+/// The self-intersecting face pairs of `mesh`, each (smaller face, larger face), sorted.
+std::vector<FacePair> sorted_self_pairs(const TriangleMesh& mesh) {
+  std::vector<FacePair> pairs = find_self_intersecting_face_pairs(mesh).pairs.pairs;
+  for (FacePair& p : pairs) p = {std::min(p.first, p.second), std::max(p.first, p.second)};
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+/// Self-intersecting face pairs of `after` that are not among `had` (sorted_self_pairs of
+/// the same faces before), sorted.
+std::vector<FacePair> added_crossings(const std::vector<FacePair>& had, const TriangleMesh& after) {
   std::vector<FacePair> added;
-  for (FacePair p : find_self_intersecting_face_pairs(after).pairs.pairs) {
-    p = {std::min(p.first, p.second), std::max(p.first, p.second)};
+  for (const FacePair& p : sorted_self_pairs(after))
     if (!std::binary_search(had.begin(), had.end(), p)) added.push_back(p);
-  }
-  std::sort(added.begin(), added.end());
   return added;
 }
 
@@ -78,8 +81,9 @@ std::vector<Eigen::Isometry3d> partial_motions(const Skeleton& source,
 
 /// The crossings `made` by the turn pushed apart on `posed` (untangle_crossings; the
 /// input's own are left to the prepare stage). Returns the pairs still crossing that
-/// `before` did not have, and in `why` how many of them the untangle left for each reason.
-std::vector<FacePair> untangle_pose_crossings(const TriangleMesh& before, TriangleMesh& posed,
+/// are not among `had` (the input's own, sorted_self_pairs), and in `why` how many of them
+/// the untangle left for each reason.
+std::vector<FacePair> untangle_pose_crossings(const std::vector<FacePair>& had, TriangleMesh& posed,
                                               const std::vector<FacePair>& made, double avatar_side,
                                               std::string& why) {
   UntangleOptions options;
@@ -87,7 +91,7 @@ std::vector<FacePair> untangle_pose_crossings(const TriangleMesh& before, Triang
   options.max_displacement = kPoseUntangleBudget * avatar_side;
   Untangled untangled = untangle_crossings(posed, made, options);
   posed.vertices = std::move(untangled.vertices);
-  std::vector<FacePair> left = added_crossings(before, posed);
+  std::vector<FacePair> left = added_crossings(had, posed);
   std::map<std::string, int> reasons;
   for (const LeftCrossing& crossing : untangled.left) {
     const FacePair p{std::min(crossing.pair.first, crossing.pair.second),
@@ -132,9 +136,11 @@ PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method) {
   const double avatar_side = (scene.avatar.mesh.vertices.colwise().maxCoeff() -
                               scene.avatar.mesh.vertices.colwise().minCoeff())
                                  .maxCoeff();
+  // Joints that hold none of the garment (a hand's fingers under a sleeve) turn none of it.
   double largest_turn = 0.0;
-  for (const Eigen::Isometry3d& m : motions)
-    largest_turn = std::max(largest_turn, Eigen::AngleAxisd(m.linear()).angle());
+  for (std::size_t j = 0; j < motions.size(); ++j)
+    if (skin.weights.row(static_cast<Eigen::Index>(j)).maxCoeff() > 0.0)
+      largest_turn = std::max(largest_turn, Eigen::AngleAxisd(motions[j].linear()).angle());
   // A skin whose weights fold the cloth onto itself (an arm lowered through the armpit's
   // cloth) makes crossings the input did not have; were any left, they would pass for the
   // input's own in the solve, so they are pushed apart, or the pose is kept. The turn is
@@ -146,6 +152,7 @@ PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method) {
       rows.row(static_cast<Eigen::Index>(v)) = document_rows.row(scene.garment.sim_to_obj[v]);
     return rows;
   };
+  const std::vector<FacePair> had = sorted_self_pairs(before);
   TriangleMesh after = before;
   MatrixX3d posed;
   std::size_t made = 0;
@@ -162,10 +169,10 @@ PoseReport pose_garment(Scene& scene, PoseMode mode, SkinningMethod method) {
       const MatrixX3d skinned = sim_rows(posed);
       after.vertices += skinned - skinned_before;
       skinned_before = skinned;
-      const std::vector<FacePair> added = added_crossings(before, after);
+      const std::vector<FacePair> added = added_crossings(had, after);
       made += added.size();
       if (added.empty()) continue;
-      left = untangle_pose_crossings(before, after, added, avatar_side, why).size();
+      left = untangle_pose_crossings(had, after, added, avatar_side, why).size();
     }
     if (left == 0) break;
   }

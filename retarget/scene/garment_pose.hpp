@@ -26,7 +26,7 @@ struct PoseReport {
   std::string reason;  ///< why the garment kept its pose, when it did
   SkinningMethod method = SkinningMethod::kLinearBlend;
   int joints = 0;
-  double largest_turn_degrees = 0.0;  ///< the largest turn of a joint
+  double largest_turn_degrees = 0.0;  ///< the largest turn of a joint that holds some of it
   /// Crossings the turn made, pushed apart after it (all of them, or the pose is kept).
   int untangled_pairs = 0;
   /// The pose step's own change of shape, scale free (ShapeChange).
