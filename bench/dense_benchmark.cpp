@@ -55,7 +55,8 @@ std::vector<DenseScene> shared_scenes() {
                      path("avatars/goblin/skin.txt"), path("garments/puffer/no-fit.txt")}};
   // The production shirt onto the undressed female body, with its own source body.
   const std::string outfit = path("real/male-outfit.glb");
-  DenseScene shirt{"shirt_female", {outfit, path("real/female-full-body.glb")}, false, false};
+  DenseScene shirt{
+      "shirt_female", {outfit, path("real/female-full-body.glb"), {}, {}, {}, {}}, false, false};
   shirt.paths.garment_mesh = "Wolf3D_Outfit_Top";
   shirt.paths.avatar_meshes = {"body.001"};
   shirt.paths.source_body = outfit;
