@@ -59,6 +59,10 @@ struct RetargetParameters {
   /// The Newton step cap of a fit that starts where a coarse proxy's fit led (coarse to
   /// fine): it polishes a nearly converged garment; 0: fit_iteration_cap().
   int guided_fit_max_iterations = 0;
+  /// The Newton step cap of a corrected animation frame's settling toward its skinned place
+  /// (the fit with GarmentScene::tracked): each step stays free, and the next frame goes on
+  /// from where it stopped, so fewer steps trade larger corrections for less time.
+  int settle_max_iterations = 4;
   int fit_samples_per_face = 3;  ///< quadrature points per face for L_fit: 1, 3 or 6
   bool self_contact = true;      ///< model garment–garment contact
   /// Model it everywhere, also inside regions that provably cannot fold onto themselves

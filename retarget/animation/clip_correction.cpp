@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -19,10 +20,6 @@ namespace {
 /// Rings of neighbours around a crossing at rest whose self pairs are left out of contact,
 /// as the prepare stage leaves them for the solve.
 constexpr int kTangleRings = 2;
-
-/// Newton steps of the garment settling toward its skinned place: every step stays free
-/// (CCD), and what a frame leaves the next one goes on with.
-constexpr int kSettleIterations = 8;
 
 /// Tries of a frame, each in steps half as long as the one before.
 constexpr int kAttempts = 3;
@@ -210,7 +207,7 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
 
   const UnitFrame units = unit_frame(scene.avatar.mesh.vertices);
   RetargetParameters settle_parameters = parameters;
-  settle_parameters.fit_max_iterations = kSettleIterations;
+  settle_parameters.fit_max_iterations = parameters.settle_max_iterations;
   const MergedGarments merged = merge_garments(scene);
   const TriangleMesh rest{units.to_solver(merged.rest.vertices), merged.rest.faces};
   const std::vector<int> tangles =
@@ -266,8 +263,9 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
       bool stalled = false;
       for (int s = 1; s <= steps; ++s) {
         interrupter.check();
-        const PosedScene posed =
-            s == steps ? at_target : pose_scene(scene, blend(previous, target, double(s) / steps));
+        std::optional<PosedScene> between;
+        if (s < steps) between = pose_scene(scene, blend(previous, target, double(s) / steps));
+        const PosedScene& posed = between ? *between : at_target;
         ++result.steps;
         const MatrixX3d avatar_now = units.to_solver(posed.avatar.vertices);
         const MatrixX3d skinned = merged.stack(posed.garments);
