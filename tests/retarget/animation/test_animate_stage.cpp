@@ -38,6 +38,8 @@ TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected 
   CHECK(clip.solved_frames + clip.carried_frames == clip.corrected_frames);
   CHECK(clip.morph_targets == clip.solved_frames);
   CHECK(clip.corrections_failed == 0);
+  // Each settling stops at its cap.
+  CHECK(clip.settle_iterations <= options.parameters.settle_max_iterations * clip.solves);
   // Every frame of the file as written, played with its morph weights, is free.
   CHECK(clip.written.crossing_frames() == 0);
   CHECK(output.certified());
@@ -65,6 +67,29 @@ TEST_CASE("a sleeve on a bending elbow: skinning crosses the arm, the corrected 
   INFO(validator.summary.dump(2));
   CHECK(validator.exit_code == 0);
   CHECK(validator.summary["errors"] == 0);
+}
+
+TEST_CASE("a settling cut to one Newton step still leaves every frame of the clip free",
+          "[animation]") {
+  const auto dir = test::fresh_temp_dir("animate_short_settle");
+  write_bending_arm_scene(make_bending_arm_scene(45.0), dir.string());
+  const std::vector<std::string> files{(dir / "sleeve.glb").string()};
+  const std::vector<std::string> meshes{""};
+  const std::vector<std::string> avatar_meshes;
+  Progress progress(true);
+  AnimateOptions options;
+  options.clips = {"bend"};
+  options.parameters.settle_max_iterations = 1;
+  const AnimateOutput output =
+      run_animate({files, meshes, (dir / "arm.glb").string(), avatar_meshes}, options, progress);
+  REQUIRE(output.clips.size() == 1);
+  const AnimationReport& clip = output.clips.front();
+  INFO(clip_summary(clip.skinned) << "\n" << clip_summary(clip.written));
+  CHECK(clip.solves >= 1);
+  CHECK(clip.settle_iterations <= clip.solves);
+  CHECK(clip.corrections_failed == 0);
+  CHECK(clip.written.crossing_frames() == 0);
+  CHECK(output.certified());
 }
 
 }  // namespace
