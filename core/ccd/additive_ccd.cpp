@@ -14,9 +14,6 @@ constexpr double kAdvanceFraction = 0.9;
 /// Stop once the gap above the separation is below this fraction of the starting gap:
 /// the step is then within a hair of the time the pair reaches the separation.
 constexpr double kStopGapFraction = 0.01;
-/// Below this share of the absolute floor a pair can only lie where it started the solve:
-/// CCD-bounded steps stop every pair above the floor, and rounding takes a hair off it.
-constexpr double kPressedShare = 0.5;
 
 struct PointTriangle {
   static DistanceStencil stencil(const std::array<Vector3d, 4>& x) {
@@ -64,14 +61,9 @@ double additive_ccd(const std::array<Vector3d, 4>& x0, const std::array<Vector3d
   if (d0 == 0.0) return 0.0;
   double g = std::max(options.min_separation_ratio * d0, options.min_separation);
   if (d0 <= g) {
-    // At the floor, a pair that approaches gets no step: steps keep every other pair above
-    // it, so only pairs that started the solve deep within it (a crossing's neighbours as
-    // given, closer than the rounding) lie below half of it. Those keep a share of their
-    // own distance instead, and their barrier holds them apart; held to the floor, they
-    // could not move at all.
     double rate = 0.0;  // d(d²)/dt at t = 0
     for (int i = 0; i < 4; ++i) rate += grad.segment<3>(3 * i).dot(x1[i] - x0[i]);
-    if (rate < 0.0 && d0 > kPressedShare * options.min_separation) return 0.0;
+    if (rate < 0.0) return 0.0;
     g = options.min_separation_ratio * d0;
   }
 

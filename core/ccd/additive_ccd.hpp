@@ -16,9 +16,7 @@ namespace gr {
 //
 // The separation is g = max(ratio d0, min_separation) with d0 the starting distance. A pair
 // that starts at or below min_separation returns 0 when its distance is decreasing at the
-// start, and otherwise is held to ratio d0 only (so it can move apart); one that starts
-// below half of min_separation, which steps never take a pair to, is held to ratio d0
-// either way, so that it can move at all. A pair at zero
+// start, and otherwise is held to ratio d0 only (so it can move apart). A pair at zero
 // distance returns 0 unless it has no relative motion. Parallel, coplanar and degenerate
 // configurations need no special case: the distance functions classify them.
 

@@ -17,10 +17,8 @@ struct CcdOptions {
 /// Largest fraction alpha in [0, 1] of the linear motion V0 → V1 (#V×3 stacked) such that
 /// no candidate pair comes closer than the minimum separation anywhere in [0, alpha].
 /// Conservative: never larger than the true time of contact. 0 when a pair starts at or
-/// below min_separation and approaches, unless it starts below half of it (no step takes a
-/// pair there: it started the solve so close); such a pair, and one that starts below
-/// min_separation but does not approach, is held to min_separation_ratio times its starting
-/// distance only. A pair at zero distance that moves gets 0. Additive
+/// below the separation and approaches; a pair that starts below min_separation but does
+/// not approach is held to min_separation_ratio times its starting distance only. Additive
 /// CCD per pair (core/ccd/additive_ccd.hpp), pairs in parallel.
 /// @throw std::invalid_argument for options out of range or V0, V1 of different sizes.
 double max_step(const Candidates& swept_candidates, const Eigen::Ref<const MatrixX3d>& V0,
