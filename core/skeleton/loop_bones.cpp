@@ -10,6 +10,34 @@
 namespace gr {
 namespace {
 
+/// A loop is measured along a bone it goes round: seen along the bone, it turns about the
+/// bone's line at least this many turns...
+constexpr double kAroundTurns = 0.5;
+/// ... and its centre lies along the bone within this share of the bone's length past
+/// either end. Measured along a bone it does not go round (an eyelet on a shoe along a
+/// finger), a loop would swing with the bone's turn times its distance.
+constexpr double kBeyondBoneEnds = 0.5;
+
+/// Whether `loop` (vertex ids of `garment`, centre `centre`) goes round the bone a → b.
+bool goes_round(const Eigen::Ref<const MatrixX3d>& garment, const std::vector<int>& loop,
+                const Vector3d& centre, const Vector3d& a, const Vector3d& b) {
+  const double length = (b - a).norm();
+  const Vector3d axis = (b - a) / length;
+  const double along = (centre - a).dot(axis) / length;
+  if (along < -kBeyondBoneEnds || along > 1.0 + kBeyondBoneEnds) return false;
+  const auto across = [&](int v) {
+    const Vector3d p = garment.row(v).transpose() - a;
+    return Vector3d(p - p.dot(axis) * axis);
+  };
+  double turned = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vector3d p = across(loop[i]);
+    const Vector3d q = across(loop[(i + 1) % loop.size()]);
+    turned += std::atan2(axis.dot(p.cross(q)), p.dot(q));
+  }
+  return std::abs(turned) >= kAroundTurns * 2.0 * M_PI;
+}
+
 double point_segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
   const Vector3d d = b - a;
   const double length_sq = d.squaredNorm();
@@ -109,6 +137,7 @@ std::vector<LoopBone> assign_loop_bones(const Eigen::Ref<const MatrixX3d>& garme
       const Vector3d direction = c - a;
       if (!(direction.norm() > 0.0)) continue;
       if (std::abs(direction.normalized().dot(normal)) < min_cosine) continue;
+      if (!goes_round(garment, loop, centre, a, c)) continue;
       const double distance = point_segment_distance(centre, a, c);
       if (distance < best_distance) {
         best_distance = distance;

@@ -46,7 +46,10 @@ LegJoints find_leg_joints(const Eigen::Ref<const MatrixX2i>& bones, int joint_co
 /// the virtual bone from the midpoint of the hips to the midpoint of the knees (see
 /// find_leg_joints), which runs down between the legs. Any other loop takes the bone
 /// closest to its centre (segment distance) among those whose direction is within 60
-/// degrees of its normal (either sign); a loop with no such bone, or with a zero normal,
+/// degrees of its normal (either sign) and that it goes round: seen along the bone, the
+/// loop turns at least half a turn about its line, and its centre lies along the bone
+/// within half the bone's length past either end (a cuff round a forearm, a hem round the
+/// hips; not an eyelet beside a foot). A loop with no such bone, or with a zero normal,
 /// gets none and is left out.
 /// @param garment #Vg×3; source_joints, target_joints #J×3 (normalized scene units).
 /// @param skirt_vertices per garment vertex, 1 for a skirt's; empty: no skirt.

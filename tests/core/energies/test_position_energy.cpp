@@ -154,10 +154,11 @@ TEST_CASE("loop bones: the closest bone within 60 degrees of the loop normal", "
 
   SECTION("in an outfit only the skirt's loops take the virtual bone") {
     // The cylinder's lower loop is a skirt's (as if it were another garment), the upper
-    // one a jacket's: the jacket's loop keeps its own bone.
+    // one a jacket's: the jacket's loop keeps its own bone, the spine it goes round.
     std::vector<char> lower(static_cast<std::size_t>(cylinder.vertices.rows()), 0);
     for (Eigen::Index v = 0; v < cylinder.vertices.rows(); ++v)
       lower[static_cast<std::size_t>(v)] = cylinder.vertices(v, 2) < 0.5;
+    skeleton.row(1) << 0.0, 0.0, 1.1;
     const auto mixed = assign_loop_bones(cylinder.vertices, loops, skeleton, 2.0 * skeleton,
                                          data_skeleton_bones(), lower);
     REQUIRE(mixed.size() == 2);
@@ -167,4 +168,26 @@ TEST_CASE("loop bones: the closest bone within 60 degrees of the loop normal", "
     CHECK(skirt_loop.bone_index == -1);
     CHECK(jacket_loop.bone_index >= 0);
   }
+}
+
+TEST_CASE("loop bones: a loop takes only a bone it goes round", "[skeleton]") {
+  // A small ring (an eyelet, normal along z) beside a vertical bone it does not go round,
+  // and a cuff around the bone's line far past its end: neither takes the bone. A cuff
+  // around the bone does.
+  MatrixX3d joints(2, 3);
+  joints << 0, 0, 0, 0, 0, 1;
+  MatrixX2i bones(1, 2);
+  bones << 0, 1;
+  const auto assigned_to = [&](const TriangleMesh& ring) {
+    const auto assigned =
+        assign_loop_bones(ring.vertices, boundary_loops(ring.faces), joints, joints, bones);
+    return assigned.size();
+  };
+  TriangleMesh eyelet = open_cylinder(0.02, 0.45, 0.5, 2, 8);
+  eyelet.vertices.col(0).array() += 0.3;
+  CHECK(assigned_to(eyelet) == 0);
+  CHECK(assigned_to(open_cylinder(0.1, 4.0, 4.2, 2, 8)) == 0);
+  CHECK(assigned_to(open_cylinder(0.1, 0.4, 0.6, 2, 8)) == 2);
+  // Past the bone's end, by less than half its length: a hem below the hips.
+  CHECK(assigned_to(open_cylinder(0.1, 1.2, 1.4, 2, 8)) == 2);
 }
