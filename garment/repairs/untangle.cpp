@@ -8,6 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/mesh/pieces.hpp"
 #include "core/mesh/vertex_neighbours.hpp"
 #include "validate/checks/self_intersections.hpp"
 
@@ -23,6 +24,8 @@ constexpr int kFadeRings[] = {0, 1, 3};
 /// how much deeper than their push the region's vertices may lie.
 constexpr int kRegionRings = 4;
 constexpr double kRegionDepth = 4.0;
+/// A piece with at most this share of the other piece's vertices is moved whole first.
+constexpr double kSmallPieceShare = 0.25;
 
 /// The push that undoes one crossing pair.
 struct PairPush {
@@ -438,7 +441,8 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
           if (changed_at[static_cast<std::size_t>(g)] > since) return true;
     return false;
   };
-  const auto try_move = [&](std::map<int, Vector3d> move, int rings) {
+  const auto try_move = [&](std::map<int, Vector3d> move, int rings,
+                            const FacePair* undone = nullptr) {
     std::vector<int> front;
     for (const auto& entry : move) front.push_back(entry.first);
     for (int ring = 1; ring <= rings; ++ring) {
@@ -477,7 +481,11 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     region.erase(std::unique(region.begin(), region.end()), region.end());
     const std::vector<FacePair> before = crossings.touching(region);
     const std::vector<FacePair> after = crossings.crossing_at(trial, region);
-    if (!tally(trial, after).better_than(tally(X, before))) {
+    const bool still_crossing =
+        undone && std::any_of(after.begin(), after.end(), [&](const FacePair& p) {
+          return p.first == undone->first && p.second == undone->second;
+        });
+    if (still_crossing || !tally(trial, after).better_than(tally(X, before))) {
       for (const int v : clamped) at_budget[static_cast<std::size_t>(v)] = 1;
       return false;
     }
@@ -486,6 +494,44 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     ++out.pushes;
     for (const int f : region) changed_at[static_cast<std::size_t>(f)] = out.pushes;
     return true;
+  };
+
+  // A crossing between two pieces (an eyelet or a lace through the shoe it lies on) may be
+  // undone by moving the smaller piece whole, as far as its face's push takes that face
+  // across the other: its shape then does not change. The move must undo the pair
+  // (not only make it shallower: the piece would slide along the other). A piece much
+  // smaller than the other is moved so first; any smaller piece once no local push does.
+  const std::vector<int> piece = vertex_pieces(garment);
+  std::map<int, std::vector<int>> piece_vertices;
+  for (std::size_t v = 0; v < n; ++v) piece_vertices[piece[v]].push_back(static_cast<int>(v));
+  const auto smaller_piece = [&](const FacePair& pair) {
+    const std::vector<int>& a = piece_vertices[piece[static_cast<std::size_t>(F(pair.first, 0))]];
+    const std::vector<int>& b = piece_vertices[piece[static_cast<std::size_t>(F(pair.second, 0))]];
+    return a.size() <= b.size() ? std::make_pair(&a, &b) : std::make_pair(&b, &a);
+  };
+  const auto is_small_piece = [&](const FacePair& pair) {
+    const auto [smaller, larger] = smaller_piece(pair);
+    return smaller != larger &&
+           static_cast<double>(smaller->size()) <= kSmallPieceShare * larger->size();
+  };
+  const auto move_smaller_piece = [&](const FacePair& pair) {
+    const auto [smaller, larger] = smaller_piece(pair);
+    if (smaller == larger) return false;
+    const bool a_smaller = piece[static_cast<std::size_t>(F(pair.first, 0))] ==
+                           piece[static_cast<std::size_t>(smaller->front())];
+    const std::vector<int>& moved = *smaller;
+    for (const int v : moved)
+      if (pusher.pinned(v)) return false;
+    // The smaller piece's face across the larger one's plane: out of the other piece, not
+    // along it.
+    const PairPush push = pusher.pushes(X, pair, true)[a_smaller ? 0 : 1];
+    Vector3d shift = Vector3d::Zero();
+    for (const auto& entry : push.moves)
+      if (entry.second.norm() > shift.norm()) shift = entry.second;
+    if (shift.norm() == 0.0 || !(shift.norm() <= options.max_displacement)) return false;
+    std::map<int, Vector3d> move;
+    for (const int v : moved) move[v] = shift;
+    return try_move(std::move(move), 0, &pair);
   };
 
   // Pair by pair, shallowest first: both faces' pushes are tried, the cheaper first, each
@@ -505,8 +551,9 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
       // One face's corners across the other's plane, that face staying (the contour then
       // shrinks into the region on the wrong side, as a whole region push would), else both
       // faces going half the way.
-      bool kept = false;
+      bool kept = is_small_piece(pair) && move_smaller_piece(pair);
       for (const bool alone : {true, false}) {
+        if (kept) break;
         const std::array<PairPush, 2> both = pusher.pushes(X, pair, alone);
         std::array<int, 2> tries{0, 1};
         if (both[1].depth < both[0].depth) std::swap(tries[0], tries[1]);
@@ -549,6 +596,7 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
         }
         if (kept) break;
       }
+      if (!kept && !is_small_piece(pair)) kept = move_smaller_piece(pair);
       progress |= kept;
       if (!kept) tried_at[{pair.first, pair.second}] = out.pushes;
     }

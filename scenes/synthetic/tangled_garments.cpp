@@ -93,6 +93,28 @@ TangledGarment make_strap_through_band(double depth, bool through) {
   return t;
 }
 
+TangledGarment make_eyelet_through_sheet(double depth) {
+  TangledGarment t;
+  t.name = "eyelet_through_sheet";
+  constexpr int kCells = 24, kAround = 8;
+  constexpr double kRadius = 0.02, kHeight = 0.02;
+  t.garment.vertices.resize(0, 3);
+  t.garment.faces.resize(0, 3);
+  append_grid(t.garment, kCells, kCells, false, [](int i, int j) {
+    return Vector3d(-0.5 + static_cast<double>(j) / kCells, -0.5 + static_cast<double>(i) / kCells,
+                    0.0);
+  });
+  append_grid(t.garment, 1, kAround, true, [&](int i, int j) {
+    // Off the sheet's vertices, so that no crossing is degenerate.
+    const double a = 2.0 * kPi * (j + 0.3) / kAround;
+    return Vector3d(0.013 + kRadius * std::cos(a), 0.007 + kRadius * std::sin(a),
+                    kHeight * i - depth);
+  });
+  t.body_points = MatrixX3d::Zero(1, 3);
+  t.body_points(0, 2) = -1.0;
+  return t;
+}
+
 TangledGarment make_layers_crossing_at_hem(double depth) {
   TangledGarment t;
   t.name = "layers_crossing_at_hem";

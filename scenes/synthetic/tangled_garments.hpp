@@ -29,6 +29,10 @@ TangledGarment make_fold_through_fold(double depth);
 /// that no small push undoes it (`depth` unused).
 TangledGarment make_strap_through_band(double depth, bool through);
 
+/// A sheet (1 × 1, 24 × 24 cells, at z = 0) and an eyelet, a piece of its own (a tube of
+/// radius 0.02, 0.02 tall, 8 cells around, along z), sunk `depth` through the sheet.
+TangledGarment make_eyelet_through_sheet(double depth);
+
 /// Two tubes worn one over the other (layer 0 radius 0.3, layer 1 radius 0.32, both 0.6
 /// tall, 40 cells around, around the z axis): the outer one's hem, its lowest two rings,
 /// tucked `depth` inside the inner one.

@@ -107,6 +107,29 @@ TEST_CASE("Untangle: layers crossing at a hem part inner in, outer out", "[untan
   CHECK(moved[1] > 0.0);
 }
 
+TEST_CASE("Untangle: an eyelet sunk through a sheet comes out whole", "[untangle]") {
+  const double depth = GENERATE(0.003, 0.008);
+  CAPTURE(depth);
+  const TangledGarment t = make_eyelet_through_sheet(depth);
+  const std::vector<FacePair> pairs = crossings(t.garment);
+  REQUIRE(pairs.size() >= 8);
+  const UntangleOptions options = options_for(t);
+  const Untangled u = untangle_crossings(t.garment, pairs, options);
+  CHECK(u.resolved == u.pairs_before);
+  CHECK(u.remaining.empty());
+  CHECK(crossings({u.vertices, t.garment.faces}).empty());
+  // The eyelet (the last 16 vertices) moved as one, out of the sheet by its depth and the
+  // gap; the sheet stayed.
+  const Eigen::Index sheet = t.garment.vertices.rows() - 16;
+  CHECK(u.vertices.topRows(sheet) == t.garment.vertices.topRows(sheet));
+  const Vector3d shift = (u.vertices.row(sheet) - t.garment.vertices.row(sheet)).transpose();
+  for (Eigen::Index v = sheet; v < u.vertices.rows(); ++v)
+    CHECK((u.vertices.row(v) - t.garment.vertices.row(v) - shift.transpose()).norm() < 1e-12);
+  CHECK(shift.norm() >= depth);
+  CHECK(shift.norm() <= depth + 2.0 * options.separation);
+  CHECK(moved_edge_change(t.garment, t.garment.vertices, u.vertices) < 1e-12);
+}
+
 TEST_CASE("Untangle: a strap right through a band wall is left, with its reason", "[untangle]") {
   const TangledGarment t = make_strap_through_band(0.0, true);
   const std::vector<FacePair> pairs = crossings(t.garment);
