@@ -498,9 +498,10 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
 
   // A crossing between two pieces (an eyelet or a lace through the shoe it lies on) may be
   // undone by moving the smaller piece whole, as far as its face's push takes that face
-  // across the other: its shape then does not change. The move must undo the pair
-  // (not only make it shallower: the piece would slide along the other). A piece much
-  // smaller than the other is moved so first; any smaller piece once no local push does.
+  // across the other: its shape then does not change. The move must undo the pair (not
+  // only make it shallower: the piece would slide along the other). Tried before the local
+  // pushes, and only for a piece much smaller than the other: moving a larger one whole
+  // costs a check of all its faces, and on a shirt's panels it undid nothing.
   const std::vector<int> piece = vertex_pieces(garment);
   std::map<int, std::vector<int>> piece_vertices;
   for (std::size_t v = 0; v < n; ++v) piece_vertices[piece[v]].push_back(static_cast<int>(v));
@@ -509,14 +510,11 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     const std::vector<int>& b = piece_vertices[piece[static_cast<std::size_t>(F(pair.second, 0))]];
     return a.size() <= b.size() ? std::make_pair(&a, &b) : std::make_pair(&b, &a);
   };
-  const auto is_small_piece = [&](const FacePair& pair) {
+  const auto move_small_piece = [&](const FacePair& pair) {
     const auto [smaller, larger] = smaller_piece(pair);
-    return smaller != larger &&
-           static_cast<double>(smaller->size()) <= kSmallPieceShare * larger->size();
-  };
-  const auto move_smaller_piece = [&](const FacePair& pair) {
-    const auto [smaller, larger] = smaller_piece(pair);
-    if (smaller == larger) return false;
+    if (smaller == larger ||
+        static_cast<double>(smaller->size()) > kSmallPieceShare * larger->size())
+      return false;
     const bool a_smaller = piece[static_cast<std::size_t>(F(pair.first, 0))] ==
                            piece[static_cast<std::size_t>(smaller->front())];
     const std::vector<int>& moved = *smaller;
@@ -551,7 +549,7 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
       // One face's corners across the other's plane, that face staying (the contour then
       // shrinks into the region on the wrong side, as a whole region push would), else both
       // faces going half the way.
-      bool kept = is_small_piece(pair) && move_smaller_piece(pair);
+      bool kept = move_small_piece(pair);
       for (const bool alone : {true, false}) {
         if (kept) break;
         const std::array<PairPush, 2> both = pusher.pushes(X, pair, alone);
@@ -596,7 +594,6 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
         }
         if (kept) break;
       }
-      if (!kept && !is_small_piece(pair)) kept = move_smaller_piece(pair);
       progress |= kept;
       if (!kept) tried_at[{pair.first, pair.second}] = out.pushes;
     }

@@ -77,9 +77,12 @@ struct Untangled {
 /// past it, first with the other face staying (so that the contour shrinks into the region
 /// on the wrong side, ring by ring), then with both faces going half the way; each face's
 /// push is tried, the cheaper first, alone and spread over one and three edge rings (ring k
-/// taking 1 − k / (rings + 1) of the way). A push is kept only when the exact check of the
-/// faces it moves, against every face near them, finds their crossings fewer, or as many
-/// and shallower. Between ordered parts only pushes that take the inner face inward or the
+/// taking 1 − k / (rings + 1) of the way). Where a piece (connected part) with at most a
+/// quarter of the other piece's vertices crosses it, the whole piece is first moved as far
+/// as its face's push goes (an eyelet lifted out of a shoe keeps its shape), kept only when
+/// that pair no longer crosses. A push is kept only when the exact check of the faces it
+/// moves, against every face near them, finds their crossings fewer, or as many and
+/// shallower. Between ordered parts only pushes that take the inner face inward or the
 /// outer outward are tried. Passes go on while some push is kept, at most max_rounds.
 /// No vertex moves further than options.max_displacement from its start, pinned vertices
 /// not at all. A garment that crosses nothing comes back unchanged.
