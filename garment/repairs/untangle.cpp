@@ -87,6 +87,18 @@ struct Pusher {
   }
 
   /// 1 when face a's part lies inside face b's, -1 outside, 0 unknown.
+  /// The gap a push aims at between faces a and b.
+  double separation(int a, int b) const {
+    if (options.layer_separation > 0.0 && !options.part_layer.empty()) {
+      const auto layer = [&](int f) {
+        return options
+            .part_layer[static_cast<std::size_t>(options.face_part[static_cast<std::size_t>(f)])];
+      };
+      if (layer(a) != layer(b)) return options.layer_separation;
+    }
+    return options.separation;
+  }
+
   int inside(int a, int b) const {
     if (options.face_part.empty() || options.part_inside.size() == 0) return 0;
     return options.part_inside(options.face_part[static_cast<std::size_t>(a)],
@@ -100,7 +112,8 @@ struct Pusher {
   /// each goes half, and the movers all the way where the plane's face cannot move).
   PairPush across(const MatrixX3d& X, const std::array<int, 3>& mover,
                   const std::array<bool, 3>& mover_shared, const std::array<int, 3>& plane,
-                  const std::array<bool, 3>& plane_shared, int side, bool alone) const {
+                  const std::array<bool, 3>& plane_shared, int side, bool alone,
+                  double separation) const {
     PairPush push;
     const Vector3d p0 = X.row(plane[0]).transpose();
     Vector3d n = (X.row(plane[1]).transpose() - p0).cross(X.row(plane[2]).transpose() - p0);
@@ -142,7 +155,7 @@ struct Pusher {
     bool any_mover = false;
     for (std::size_t i = 0; i < 3; ++i) {
       if (mover_shared[i] || side * d[i] < 0.0) continue;
-      const double needed = side * d[i] + options.separation;
+      const double needed = side * d[i] + separation;
       push.depth = std::isinf(push.depth) ? needed : std::max(push.depth, needed);
       const bool moves = !pinned(mover[i]);
       const double own = moves ? (plane_moves ? 0.5 * needed : needed) : 0.0;
@@ -185,8 +198,9 @@ struct Pusher {
       side_ab = a_inside > 0 ? b_out : -b_out;
       side_ba = a_inside < 0 ? a_out : -a_out;
     }
-    return {across(X, c.a, c.a_shared, c.b, c.b_shared, side_ab, alone),
-            across(X, c.b, c.b_shared, c.a, c.a_shared, side_ba, alone)};
+    const double gap = separation(pair.first, pair.second);
+    return {across(X, c.a, c.a_shared, c.b, c.b_shared, side_ab, alone, gap),
+            across(X, c.b, c.b_shared, c.a, c.a_shared, side_ba, alone, gap)};
   }
 
   /// The cheaper of the two pushes, or, when neither can be made, why.
@@ -387,9 +401,13 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     throw std::invalid_argument("untangle: one part per face");
   if (options.part_inside.rows() != options.part_inside.cols())
     throw std::invalid_argument("untangle: the order between parts is not square");
-  for (const int part : options.face_part)
+  for (const int part : options.face_part) {
     if (options.part_inside.size() > 0 && (part < 0 || part >= options.part_inside.rows()))
       throw std::invalid_argument("untangle: a face's part has no order");
+    if (!options.part_layer.empty() &&
+        (part < 0 || part >= static_cast<int>(options.part_layer.size())))
+      throw std::invalid_argument("untangle: a face's part has no layer");
+  }
 
   Untangled out;
   out.vertices = garment.vertices;
@@ -575,10 +593,11 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
                     if (region.count(u) || pusher.pinned(u)) continue;
                     const double d =
                         push.side * push.plane_normal.dot(X.row(u).transpose() - push.plane_point);
+                    const double gap = pusher.separation(pair.first, pair.second);
                     if (!(d > 0.0) || d > kRegionDepth * push.depth ||
-                        d + options.separation > options.max_displacement)
+                        d + gap > options.max_displacement)
                       continue;
-                    region[u] = -push.side * (d + options.separation) * push.plane_normal;
+                    region[u] = -push.side * (d + gap) * push.plane_normal;
                     next.push_back(u);
                   }
                 front = std::move(next);

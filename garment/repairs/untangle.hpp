@@ -16,6 +16,9 @@ struct UntangleOptions {
   /// The gap aimed at between two faces pushed apart: each pushed vertex goes this far past
   /// the other face's plane.
   double separation = 1e-3;
+  /// The gap aimed at between faces of two layers (parts of different part_layer); 0:
+  /// `separation`.
+  double layer_separation = 0.0;
   /// No vertex moves further than this from where it started: a crossing that needs more
   /// (a strap laid right through a band) is left as it is.
   double max_displacement = 2e-2;
@@ -34,6 +37,8 @@ struct UntangleOptions {
   /// other way round.
   std::vector<int> face_part;
   Eigen::MatrixXi part_inside;
+  /// Per part, its layer (the garment of an outfit it belongs to); empty: one layer.
+  std::vector<int> part_layer;
   /// Points inside the body (bone samples, or the avatar's vertices), #P×3: "outward" at a
   /// point is away from the nearest of them. Needed only with an order between parts.
   MatrixX3d body_points;
@@ -74,12 +79,12 @@ struct Untangled {
 /// `garment`) the way intersection contour minimization does (Volino and
 /// Magnenat-Thalmann 2006), pair by pair, shallowest first: the corners of one face that lie
 /// on the shallower side of the other face's plane are pushed across it, options.separation
-/// past it, first with the other face staying (so that the contour shrinks into the region
-/// on the wrong side, ring by ring), then with both faces going half the way; each face's
-/// push is tried, the cheaper first, alone and spread over one and three edge rings (ring k
-/// taking 1 − k / (rings + 1) of the way). Where a piece (connected part) with at most a
-/// quarter of the other piece's vertices crosses it, the whole piece is first moved as far
-/// as its face's push goes (an eyelet lifted out of a shoe keeps its shape), kept only when
+/// past it (options.layer_separation between layers), first with the other face staying (so that
+/// the contour shrinks into the region on the wrong side, ring by ring), then with both faces going
+/// half the way; each face's push is tried, the cheaper first, alone and spread over one and three
+/// edge rings (ring k taking 1 − k / (rings + 1) of the way). Where a piece (connected part) with
+/// at most a quarter of the other piece's vertices crosses it, the whole piece is first moved as
+/// far as its face's push goes (an eyelet lifted out of a shoe keeps its shape), kept only when
 /// that pair no longer crosses. A push is kept only when the exact check of the faces it
 /// moves, against every face near them, finds their crossings fewer, or as many and
 /// shallower. Between ordered parts only pushes that take the inner face inward or the
