@@ -86,7 +86,6 @@ struct Pusher {
     return !options.pinned.empty() && options.pinned[static_cast<std::size_t>(v)];
   }
 
-  /// 1 when face a's part lies inside face b's, -1 outside, 0 unknown.
   /// The gap a push aims at between faces a and b.
   double separation(int a, int b) const {
     if (options.layer_separation > 0.0 && !options.part_layer.empty()) {
@@ -99,6 +98,7 @@ struct Pusher {
     return options.separation;
   }
 
+  /// 1 when face a's part lies inside face b's, -1 outside, 0 unknown.
   int inside(int a, int b) const {
     if (options.face_part.empty() || options.part_inside.size() == 0) return 0;
     return options.part_inside(options.face_part[static_cast<std::size_t>(a)],
