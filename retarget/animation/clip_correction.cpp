@@ -303,6 +303,9 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
                 fmt::format("frame {} step {} of {}: {} at t = {:.3g} ({})", f, s, steps,
                             to_string(pushed.status), pushed.t, pushed.message);
           garment_before = units.to_solver(skinned);
+        } else if (s < steps) {
+          // A step on the way only has to keep the garment clear; the frame's pose settles it.
+          garment_before = pushed.garment;
         } else {
           const Stopwatch settle_time;
           FitResult settled = fit_garment(settling, pushed.garment, settle_parameters, quiet);

@@ -25,7 +25,7 @@ struct AnimateOptions {
   RetargetParameters parameters;  ///< the solve's; its dhat and CCD bound the corrections
   /// A step of the avatar between two solved poses moves no vertex further (normalized
   /// units, body ≈ 2 tall); larger motions are blended in steps.
-  double max_step = 0.05;
+  double max_step = 0.1;
 };
 
 /// One clip: the garments played by their skins, the corrections, and the written result.
