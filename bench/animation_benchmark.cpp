@@ -146,17 +146,17 @@ std::vector<gr::AnimationClip> made_clips(const gr::SkinBinding& skin,
   const Eigen::Vector3d side = Eigen::Vector3d::UnitX();
   const auto at = [](double t, JointTurns turns) { return PoseKey{t, std::move(turns)}; };
   std::vector<gr::AnimationClip> clips;
-  clips.push_back(made_clip(skin, idle, "reach",
-                            {at(0.0, {}),
-                             at(2.0, {{"LeftArm", turn(side, -70.0)},
-                                      {"RightArm", turn(side, -50.0)},
-                                      {"LeftForeArm", turn(side, -30.0)},
-                                      {"LeftUpLeg", turn(side, -45.0)},
-                                      {"LeftLeg", turn(side, 60.0)},
-                                      {"Spine1", turn(Eigen::Vector3d::UnitY(), 20.0)}})}));
+  clips.push_back(
+      made_clip(skin, idle, "reach",
+                {at(0.0, {}), at(2.0, {{"LeftArm", turn(side, -70.0)},
+                                       {"RightArm", turn(side, -50.0)},
+                                       {"LeftForeArm", turn(side, -30.0)},
+                                       {"LeftUpLeg", turn(side, -45.0)},
+                                       {"LeftLeg", turn(side, 60.0)},
+                                       {"Spine1", turn(Eigen::Vector3d::UnitY(), 20.0)}})}));
   const JointTurns left_stride = {
-      {"LeftUpLeg", turn(side, -30.0)},   {"RightUpLeg", turn(side, 30.0)},
-      {"RightLeg", turn(side, 50.0)},     {"RightArm", turn(side, -30.0)},
+      {"LeftUpLeg", turn(side, -30.0)},    {"RightUpLeg", turn(side, 30.0)},
+      {"RightLeg", turn(side, 50.0)},      {"RightArm", turn(side, -30.0)},
       {"RightForeArm", turn(side, -40.0)}, {"LeftArm", turn(side, 25.0)},
       {"LeftForeArm", turn(side, -20.0)}};
   JointTurns right_stride;
@@ -221,8 +221,7 @@ int main(int argc, char** argv) {
   const std::string made = (fs::path(out_dir) / "made-clips.glb").string();
   write_made_clips(avatar, idle, made);
   std::vector<std::pair<std::string, std::string>> clips = {{"idle", idle}};
-  for (const char* name : {"reach", "walk", "guard"})
-    clips.emplace_back(name, made + "#" + name);
+  for (const char* name : {"reach", "walk", "guard"}) clips.emplace_back(name, made + "#" + name);
 
   std::printf(
       "| garment | faces | clip | frames | crossing, skinning alone | corrected | solved | "
@@ -245,8 +244,7 @@ int main(int argc, char** argv) {
       options.quiet = true;
       options.animations = {clip};
       options.fps = fps;
-      options.out_dir =
-          (fs::path(out_dir) / (garment.label + "_" + clip_name)).string();
+      options.out_dir = (fs::path(out_dir) / (garment.label + "_" + clip_name)).string();
       const double cpu_before = gr::bench::cpu_seconds();
       const gr::Stopwatch wall;
       gr::RetargetResult result;
