@@ -302,6 +302,16 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
             result.first_failure =
                 fmt::format("frame {} step {} of {}: {} at t = {:.3g} ({})", f, s, steps,
                             to_string(pushed.status), pushed.t, pushed.message);
+          // The garment where the push stopped is free of the avatar that far along its path:
+          // the next step goes on from there, so a pinch costs the frames it lasts, and this
+          // frame plays the cloth held at the pinch rather than skinned through the body.
+          const bool usable = pushed.status != InflationStatus::kSolverFailure &&
+                              pushed.garment.allFinite() && pushed.t >= 0.0 && pushed.t <= 1.0;
+          if (usable) {
+            garment_before = pushed.garment;
+            avatar_before += pushed.t * (avatar_now - avatar_before);
+            continue;
+          }
           garment_before = units.to_solver(skinned);
         } else if (s < steps) {
           // A step on the way only has to keep the garment clear; the frame's pose settles it.

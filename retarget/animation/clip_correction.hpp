@@ -37,7 +37,8 @@ struct ClipCorrection {
 /// the garment is pulled toward its skinned place under the same barrier, keeping its rest shape
 /// (fit_garment with GarmentScene::tracked). The path starts at the rest pose; where a step of the
 /// avatar moves a vertex further than `max_step` (normalized units, body ≈ 2 tall), the joints are
-/// blended in smaller steps. All garments of the scene are solved together.
+/// blended in smaller steps, each only pushing the garment clear; the frame's own pose settles
+/// it. All garments of the scene are solved together.
 /// @throw Interrupted from `interrupter`.
 /// @param skinning_alone the clip played by skinning alone (check_clip on the same scene,
 ///        clip and fps): its free frames need no correction.
