@@ -103,6 +103,8 @@ AnimatedScene read_animated_scene(const std::vector<std::string>& garment_paths,
   for (const AnimatedScene::Part& garment : scene.garments)
     scene.rest_self_pairs.push_back(
         sorted_pairs(find_self_intersecting_face_pairs(garment.mesh).pairs.pairs, true));
+  scene.rest_avatar_self_pairs =
+      sorted_pairs(find_self_intersecting_face_pairs(scene.avatar.mesh).pairs.pairs, true);
   for (std::size_t a = 0; a < scene.garments.size(); ++a)
     for (std::size_t b = a + 1; b < scene.garments.size(); ++b)
       scene.rest_layer_pairs.push_back(sorted_pairs(
@@ -158,6 +160,12 @@ std::size_t ClipFindings::crossing_frames() const {
       frames.begin(), frames.end(), [](const FrameFindings& f) { return f.total() > 0; }));
 }
 
+std::size_t ClipFindings::avatar_crossing_itself_frames() const {
+  return static_cast<std::size_t>(std::count_if(
+      frames.begin(), frames.end(),
+      [](const FrameFindings& f) { return f.total() > 0 && f.avatar_self_pairs > 0; }));
+}
+
 std::optional<std::size_t> ClipFindings::first_crossing() const {
   for (std::size_t f = 0; f < frames.size(); ++f)
     if (frames[f].total() > 0) return f;
@@ -172,7 +180,7 @@ std::optional<std::size_t> ClipFindings::worst_frame() const {
 }
 
 ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, double fps,
-                        ClipPoses* poses) {
+                        ClipPoses* poses, bool explain) {
   const Stopwatch stopwatch;
   const AnimationClip& clip = chosen.clip;
   ClipFindings findings;
@@ -208,6 +216,11 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
                                                   garment_bindings[g], frame.time),
                                clip.name, frame.time));
     frame = check_posed_frame(scene, garments, avatar, frame.time);
+    if (explain && frame.total() > 0) {
+      const std::vector<FacePair>& rest = scene.rest_avatar_self_pairs;
+      for (const FacePair& p : find_self_intersecting_face_pairs(avatar).pairs.pairs)
+        frame.avatar_self_pairs += !std::binary_search(rest.begin(), rest.end(), ordered(p));
+    }
     if (poses) {
       poses->avatar[f] = avatar.vertices;
       for (const TriangleMesh& garment : garments) poses->garments[f].push_back(garment.vertices);
@@ -228,7 +241,8 @@ nlohmann::ordered_json to_json(const ClipFindings& findings) {
     frames.push_back({{"time", frame.time},
                       {"avatar_pairs", frame.avatar_pairs},
                       {"self_pairs", frame.self_pairs},
-                      {"layer_pairs", frame.layer_pairs}});
+                      {"layer_pairs", frame.layer_pairs},
+                      {"avatar_self_pairs", frame.avatar_self_pairs}});
   return {{"clip", findings.clip},
           {"file", findings.file},
           {"fps", findings.fps},
@@ -239,6 +253,7 @@ nlohmann::ordered_json to_json(const ClipFindings& findings) {
           {"frame_count", findings.frames.size()},
           {"crossing_frames", findings.crossing_frames()},
           {"certified", findings.crossing_frames() == 0},
+          {"avatar_crossing_itself_frames", findings.avatar_crossing_itself_frames()},
           {"first_crossing_frame", frame_json(findings.first_crossing())},
           {"worst_frame", frame_json(findings.worst_frame())},
           {"seconds", findings.seconds},
@@ -254,6 +269,8 @@ std::string clip_summary(const ClipFindings& findings) {
     line += fmt::format(" (first: frame {} at {:.3f} s; worst: frame {} at {:.3f} s, {} pairs)",
                         *first, findings.frames[*first].time, worst, findings.frames[worst].time,
                         findings.frames[worst].total());
+    if (const std::size_t own = findings.avatar_crossing_itself_frames(); own > 0)
+      line += fmt::format("; in {} of them the avatar crosses itself", own);
   }
   return line;
 }

@@ -29,6 +29,8 @@ struct AnimatedScene {
   std::vector<std::vector<FacePair>> rest_self_pairs;
   /// Per garment pair (first < second, in order), its crossing pairs at rest (sorted).
   std::vector<std::vector<FacePair>> rest_layer_pairs;
+  /// The avatar's own self-intersecting face pairs at rest (sorted).
+  std::vector<FacePair> rest_avatar_self_pairs;
 };
 
 /// Reads the skinned garments (each its mesh of garment_meshes, or the default) and the
@@ -46,6 +48,10 @@ struct FrameFindings {
   std::size_t avatar_pairs = 0;  ///< garment–avatar
   std::size_t self_pairs = 0;    ///< garment self pairs not crossing at rest
   std::size_t layer_pairs = 0;   ///< garment–garment pairs not crossing at rest
+  /// Where the garments cross: the avatar's own pairs not crossing at rest (its skin
+  /// passing through itself, as in a closed elbow, leaves the cloth between no room). Not
+  /// in total(): it says why, not what.
+  std::size_t avatar_self_pairs = 0;
   /// Per garment, its faces in the pairs counted (sorted, each once).
   std::vector<std::vector<int>> crossing_faces;
   std::size_t total() const { return avatar_pairs + self_pairs + layer_pairs; }
@@ -71,6 +77,8 @@ struct ClipFindings {
   double seconds = 0.0;
 
   std::size_t crossing_frames() const;
+  /// Of the crossing frames, those where the avatar crosses itself too.
+  std::size_t avatar_crossing_itself_frames() const;
   /// The first frame with an intersection, and the one with the most pairs; none when every
   /// frame is free.
   std::optional<std::size_t> first_crossing() const;
@@ -88,10 +96,11 @@ struct ClipPoses {
 /// their skins (joints matched by name; a garment's morph weights from the clip of the same
 /// name in its own file, where it has one) and checks every frame exactly: garment–avatar,
 /// self and layer pairs (validate_meshes). Frames run in parallel. With `poses`, the posed
-/// meshes of every frame are kept there too (for the report page's frame slider).
+/// meshes of every frame are kept there too (for the report page's frame slider). With
+/// `explain`, a frame that crosses is also checked for the avatar crossing itself.
 /// @pre fps > 0.
 ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& clip, double fps,
-                        ClipPoses* poses = nullptr);
+                        ClipPoses* poses = nullptr, bool explain = true);
 
 /// The report section of one clip: counts, the first and worst frames, and per frame its
 /// time and pair counts.

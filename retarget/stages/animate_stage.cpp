@@ -66,7 +66,7 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
   std::vector<std::vector<std::vector<int>>> target_of_frame;  // [clip][garment][frame]
   for (const ChosenClip& clip : clips) {
     AnimationReport report;
-    report.skinned = check_clip(scene, clip, options.fps);
+    report.skinned = check_clip(scene, clip, options.fps, nullptr, false);
     progress.log("animate", "{} (skinning alone)", clip_summary(report.skinned));
     const ClipCorrection correction = correct_clip(scene, clip, options.fps, report.skinned,
                                                    options.parameters, options.max_step, progress);
