@@ -586,6 +586,7 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
               std::vector<int> front;
               for (const auto& entry : move) front.push_back(entry.first);
               std::map<int, Vector3d> region = move;
+              const double gap = pusher.separation(pair.first, pair.second);
               for (int ring = 0; ring < kRegionRings && !front.empty(); ++ring) {
                 std::vector<int> next;
                 for (const int v : front)
@@ -593,7 +594,6 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
                     if (region.count(u) || pusher.pinned(u)) continue;
                     const double d =
                         push.side * push.plane_normal.dot(X.row(u).transpose() - push.plane_point);
-                    const double gap = pusher.separation(pair.first, pair.second);
                     if (!(d > 0.0) || d > kRegionDepth * push.depth ||
                         d + gap > options.max_displacement)
                       continue;

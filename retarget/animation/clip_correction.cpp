@@ -290,13 +290,6 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
           stalled = true;
           break;
         }
-        // ...then the garment settles toward its skinned place, keeping its rest shape.
-        GarmentScene settling;
-        settling.garment = rest;
-        settling.avatar = moving.avatar;
-        settling.shrunk_avatar = avatar_now;
-        settling.garment_tangles = tangles;
-        settling.tracked = units.to_solver(skinned);
         if (!pushed.succeeded()) {
           if (result.corrections_failed++ == 0)
             result.first_failure =
@@ -317,6 +310,13 @@ ClipCorrection correct_clip(const AnimatedScene& scene, const ChosenClip& chosen
           // A step on the way only has to keep the garment clear; the frame's pose settles it.
           garment_before = pushed.garment;
         } else {
+          // ...then the garment settles toward its skinned place, keeping its rest shape.
+          GarmentScene settling;
+          settling.garment = rest;
+          settling.avatar = std::move(moving.avatar);
+          settling.shrunk_avatar = avatar_now;
+          settling.garment_tangles = tangles;
+          settling.tracked = units.to_solver(skinned);
           const Stopwatch settle_time;
           FitResult settled = fit_garment(settling, pushed.garment, settle_parameters, quiet);
           result.settle_seconds += settle_time.seconds();

@@ -18,8 +18,7 @@ ClipFindings bent_arm_findings(double degrees, const char* name) {
   return check_clip(scene, choose_clips({"bend"}, arm).front(), 30.0);
 }
 
-TEST_CASE("a crossing frame says when the avatar's own skin crosses itself there",
-          "[animation]") {
+TEST_CASE("a crossing frame says when the avatar's own skin crosses itself there", "[animation]") {
   // Bent by 30°, the arm's inner elbow stays open; the sleeve's stepped weights still make
   // it cross the arm.
   const ClipFindings open = bent_arm_findings(30.0, "avatar_self_open_elbow");
@@ -37,8 +36,7 @@ TEST_CASE("a crossing frame says when the avatar's own skin crosses itself there
   for (const FrameFindings& frame : closed.frames)
     if (frame.total() == 0) CHECK(frame.avatar_self_pairs == 0);
   CHECK(clip_summary(closed).find("the avatar crosses itself") != std::string::npos);
-  CHECK(to_json(closed)["avatar_crossing_itself_frames"] ==
-        closed.avatar_crossing_itself_frames());
+  CHECK(to_json(closed)["avatar_crossing_itself_frames"] == closed.avatar_crossing_itself_frames());
 }
 
 }  // namespace
