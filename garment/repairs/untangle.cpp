@@ -266,7 +266,7 @@ class LocalCrossings {
 
   /// The pairs with a face in `region` that cross at positions `X`, where only the faces of
   /// `region` moved since the last update: each checked exactly against every face whose
-  /// box meets theirs.
+  /// box meets its own.
   std::vector<FacePair> crossing_at(const MatrixX3d& X, const std::vector<int>& region) const {
     Eigen::AlignedBox3d reach;
     std::vector<Eigen::AlignedBox3d> moved;
@@ -274,9 +274,9 @@ class LocalCrossings {
       moved.push_back(box(X, f));
       reach.extend(moved.back());
     }
-    std::vector<int> local = region;
     std::vector<char> in_region(boxes_.size(), 0);
     for (const int f : region) in_region[static_cast<std::size_t>(f)] = 1;
+    std::vector<int> nearby;  // faces that did not move, with a box that meets the region's
     std::vector<char> seen(boxes_.size(), 0);
     for_cells(reach, [&](const Cell& c) {
       const auto it = grid_.find(c);
@@ -285,9 +285,38 @@ class LocalCrossings {
         const auto k = static_cast<std::size_t>(g);
         if (in_region[k] || seen[k]) continue;
         seen[k] = 1;
-        if (boxes_[k].intersects(reach)) local.push_back(g);
+        if (boxes_[k].intersects(reach)) nearby.push_back(g);
       }
     });
+    // Only pairs with a moved face can have changed: each moved face against the later
+    // moved faces and the nearby ones, in rows of the submesh tested (region first). The
+    // nearby faces sorted by their boxes' low x: a moved box meets only those from its own
+    // low x less the widest nearby box up to its high x.
+    const auto low_x = [&](int g) { return boxes_[static_cast<std::size_t>(g)].min().x(); };
+    std::sort(nearby.begin(), nearby.end(), [&](int a, int b) { return low_x(a) < low_x(b); });
+    double widest = 0.0;
+    for (const int g : nearby)
+      widest = std::max(widest, boxes_[static_cast<std::size_t>(g)].sizes().x());
+    std::vector<int> local = region;
+    std::vector<int> row_of(nearby.size(), -1);
+    std::vector<FacePair> candidates;
+    const auto moved_count = static_cast<int>(region.size());
+    for (int k = 0; k < moved_count; ++k) {
+      const Eigen::AlignedBox3d& b = moved[static_cast<std::size_t>(k)];
+      for (int j = k + 1; j < moved_count; ++j)
+        if (b.intersects(moved[static_cast<std::size_t>(j)])) candidates.push_back({k, j});
+      const auto first = std::lower_bound(nearby.begin(), nearby.end(), b.min().x() - widest,
+                                          [&](int g, double x) { return low_x(g) < x; });
+      for (auto n = static_cast<std::size_t>(first - nearby.begin());
+           n < nearby.size() && low_x(nearby[n]) <= b.max().x(); ++n) {
+        if (!b.intersects(boxes_[static_cast<std::size_t>(nearby[n])])) continue;
+        if (row_of[n] < 0) {
+          row_of[n] = static_cast<int>(local.size());
+          local.push_back(nearby[n]);
+        }
+        candidates.push_back({k, row_of[n]});
+      }
+    }
     std::map<int, int> vertex_id;
     TriangleMesh sub;
     sub.faces.resize(static_cast<Eigen::Index>(local.size()), 3);
@@ -299,11 +328,10 @@ class LocalCrossings {
     sub.vertices.resize(static_cast<Eigen::Index>(vertex_id.size()), 3);
     for (const auto& [v, id] : vertex_id) sub.vertices.row(id) = X.row(v);
     std::vector<FacePair> out;
-    for (const FacePair& p : find_self_intersecting_face_pairs(sub).pairs.pairs) {
+    for (const FacePair& p : self_intersecting_among(sub, candidates).pairs.pairs) {
       const int a = local[static_cast<std::size_t>(p.first)];
       const int b = local[static_cast<std::size_t>(p.second)];
-      if (in_region[static_cast<std::size_t>(a)] || in_region[static_cast<std::size_t>(b)])
-        out.push_back({std::min(a, b), std::max(a, b)});
+      out.push_back({std::min(a, b), std::max(a, b)});
     }
     std::sort(out.begin(), out.end(), pair_less);
     return out;

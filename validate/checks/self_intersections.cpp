@@ -63,6 +63,12 @@ bool vertex_neighbours_overlap(const Triangle& t, const Triangle& u, const Point
 
 SelfIntersections find_self_intersecting_face_pairs(const TriangleMesh& mesh,
                                                     std::size_t max_listed) {
+  return self_intersecting_among(mesh, overlapping_face_boxes(mesh), max_listed);
+}
+
+SelfIntersections self_intersecting_among(const TriangleMesh& mesh,
+                                          const std::vector<FacePair>& candidates,
+                                          std::size_t max_listed) {
   const std::vector<int> identity = position_identity(mesh.vertices);
   const std::vector<Simplex> simplices = exact::make_simplices(mesh);
   auto corners = [&](int f) {
@@ -77,7 +83,7 @@ SelfIntersections find_self_intersecting_face_pairs(const TriangleMesh& mesh,
   std::atomic<std::size_t> untested{0};
   SelfIntersections result;
   result.pairs = keep_intersecting(
-      overlapping_face_boxes(mesh),
+      candidates,
       [&](const FacePair& pair) {
         const Simplex& a = simplices[static_cast<std::size_t>(pair.first)];
         const Simplex& b = simplices[static_cast<std::size_t>(pair.second)];

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 #include "core/common/types.hpp"
 #include "validate/checks/mesh_intersections.hpp"
@@ -35,5 +36,12 @@ struct SelfIntersections {
 /// @param max_listed how many pairs to list; all are counted.
 SelfIntersections find_self_intersecting_face_pairs(
     const TriangleMesh& mesh, std::size_t max_listed = std::numeric_limits<std::size_t>::max());
+
+/// The pairs of `candidates` (distinct faces of `mesh`, each pair once) that intersect,
+/// decided as find_self_intersecting_face_pairs decides them: for a caller whose own broad
+/// phase knows which pairs can meet, such as a few moved faces and their surroundings.
+SelfIntersections self_intersecting_among(
+    const TriangleMesh& mesh, const std::vector<FacePair>& candidates,
+    std::size_t max_listed = std::numeric_limits<std::size_t>::max());
 
 }  // namespace gr
