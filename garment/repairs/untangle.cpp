@@ -268,26 +268,9 @@ class LocalCrossings {
   /// `region` moved since the last update: each checked exactly against every face whose
   /// box meets its own.
   std::vector<FacePair> crossing_at(const MatrixX3d& X, const std::vector<int>& region) const {
-    Eigen::AlignedBox3d reach;
     std::vector<Eigen::AlignedBox3d> moved;
-    for (const int f : region) {
-      moved.push_back(box(X, f));
-      reach.extend(moved.back());
-    }
-    std::vector<char> in_region(boxes_.size(), 0);
-    for (const int f : region) in_region[static_cast<std::size_t>(f)] = 1;
-    std::vector<int> nearby;  // faces that did not move, with a box that meets the region's
-    std::vector<char> seen(boxes_.size(), 0);
-    for_cells(reach, [&](const Cell& c) {
-      const auto it = grid_.find(c);
-      if (it == grid_.end()) return;
-      for (const int g : it->second) {
-        const auto k = static_cast<std::size_t>(g);
-        if (in_region[k] || seen[k]) continue;
-        seen[k] = 1;
-        if (boxes_[k].intersects(reach)) nearby.push_back(g);
-      }
-    });
+    for (const int f : region) moved.push_back(box(X, f));
+    std::vector<int> nearby = unmoved_near(moved, region);
     // Only pairs with a moved face can have changed: each moved face against the later
     // moved faces and the nearby ones, in rows of the submesh tested (region first). The
     // nearby faces sorted by their boxes' low x: a moved box meets only those from its own
@@ -317,18 +300,8 @@ class LocalCrossings {
         candidates.push_back({k, row_of[n]});
       }
     }
-    std::map<int, int> vertex_id;
-    TriangleMesh sub;
-    sub.faces.resize(static_cast<Eigen::Index>(local.size()), 3);
-    for (std::size_t k = 0; k < local.size(); ++k)
-      for (int c = 0; c < 3; ++c)
-        sub.faces(static_cast<Eigen::Index>(k), c) =
-            vertex_id.emplace(faces_(local[k], c), static_cast<int>(vertex_id.size()))
-                .first->second;
-    sub.vertices.resize(static_cast<Eigen::Index>(vertex_id.size()), 3);
-    for (const auto& [v, id] : vertex_id) sub.vertices.row(id) = X.row(v);
     std::vector<FacePair> out;
-    for (const FacePair& p : self_intersecting_among(sub, candidates).pairs.pairs) {
+    for (const FacePair& p : self_intersecting_among(submesh(X, local), candidates).pairs.pairs) {
       const int a = local[static_cast<std::size_t>(p.first)];
       const int b = local[static_cast<std::size_t>(p.second)];
       out.push_back({std::min(a, b), std::max(a, b)});
@@ -362,6 +335,43 @@ class LocalCrossings {
     for (long i = lo[0]; i <= hi[0]; ++i)
       for (long j = lo[1]; j <= hi[1]; ++j)
         for (long k = lo[2]; k <= hi[2]; ++k) visit(Cell{i, j, k});
+  }
+
+  /// The faces outside `region` whose boxes meet the box of all of `moved` (the region's
+  /// boxes now).
+  std::vector<int> unmoved_near(const std::vector<Eigen::AlignedBox3d>& moved,
+                                const std::vector<int>& region) const {
+    Eigen::AlignedBox3d reach;
+    for (const Eigen::AlignedBox3d& b : moved) reach.extend(b);
+    std::vector<char> skip(boxes_.size(), 0);
+    for (const int f : region) skip[static_cast<std::size_t>(f)] = 1;
+    std::vector<int> nearby;
+    for_cells(reach, [&](const Cell& c) {
+      const auto it = grid_.find(c);
+      if (it == grid_.end()) return;
+      for (const int g : it->second) {
+        const auto k = static_cast<std::size_t>(g);
+        if (skip[k]) continue;
+        skip[k] = 1;
+        if (boxes_[k].intersects(reach)) nearby.push_back(g);
+      }
+    });
+    return nearby;
+  }
+
+  /// The faces `local` at positions `X`, as a mesh of their own (face k is local[k]).
+  TriangleMesh submesh(const MatrixX3d& X, const std::vector<int>& local) const {
+    std::map<int, int> vertex_id;
+    TriangleMesh sub;
+    sub.faces.resize(static_cast<Eigen::Index>(local.size()), 3);
+    for (std::size_t k = 0; k < local.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+        sub.faces(static_cast<Eigen::Index>(k), c) =
+            vertex_id.emplace(faces_(local[k], c), static_cast<int>(vertex_id.size()))
+                .first->second;
+    sub.vertices.resize(static_cast<Eigen::Index>(vertex_id.size()), 3);
+    for (const auto& [v, id] : vertex_id) sub.vertices.row(id) = X.row(v);
+    return sub;
   }
 
   Eigen::AlignedBox3d box(const MatrixX3d& X, int f) const {

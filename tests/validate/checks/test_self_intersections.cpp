@@ -98,6 +98,19 @@ TEST_CASE("a garment folded through itself", "[validate][self]") {
   }
 }
 
+TEST_CASE("a caller's candidates decide which pairs are tested", "[validate][self]") {
+  const auto folded = gr::test::extruded_strip(
+      {Vector2d(0, 0), Vector2d(1, 0), Vector2d(2, 0), Vector2d(2, 1), Vector2d(1, -1)});
+  const std::vector<gr::FacePair> all = gr::find_self_intersecting_face_pairs(folded).pairs.pairs;
+  REQUIRE(all.size() >= 2);
+  // One crossing pair and one pair far apart: only the crossing one is found.
+  const std::vector<gr::FacePair> some{all.front(), {0, all.front().second}};
+  const gr::SelfIntersections found = gr::self_intersecting_among(folded, some);
+  REQUIRE(found.pairs.count == 1);
+  CHECK(found.pairs.pairs.front() == all.front());
+  CHECK(gr::self_intersecting_among(folded, {}).pairs.count == 0);
+}
+
 TEST_CASE("degenerate faces are reported, never skipped silently", "[validate][self][degenerate]") {
   // Face 1 is collinear, face 2 repeats a corner, face 3 is a point; face 0 is fine.
   const auto mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {5, 5, 5}},
