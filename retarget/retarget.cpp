@@ -180,7 +180,7 @@ void check_animation_request(const RetargetOptions& options) {
     throw InputError(options.inputs.avatar, 0,
                      "--animation needs a glTF avatar with a skin and a skinned output "
                      "(--format glb)");
-  choose_clips(options.animations, options.inputs.avatar);
+  choose_clips(options.animations, options.inputs.avatar, options.fps);
 }
 
 }  // namespace

@@ -129,7 +129,7 @@ ValidateResult run_validate(const ValidateOptions& given) {
                                    options.avatar_meshes);
     nlohmann::ordered_json& section = result.report["animations"];
     section = nlohmann::ordered_json::array();
-    for (const ChosenClip& clip : choose_clips(options.animations, options.avatar)) {
+    for (const ChosenClip& clip : choose_clips(options.animations, options.avatar, options.fps)) {
       ClipPoses* kept = options.html.empty() ? nullptr : &poses.emplace_back();
       clips.push_back(check_clip(*animated, clip, options.fps, kept));
       section.push_back(to_json(clips.back()));

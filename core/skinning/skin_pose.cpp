@@ -132,13 +132,16 @@ std::vector<Eigen::Matrix4d> posed_joint_worlds(const SkinBinding& skin, const A
   return joint_worlds(skin, clip_pose(skin, clip, binding, time));
 }
 
-std::vector<double> frame_times(const AnimationClip& clip, double fps) {
-  std::vector<double> times;
-  const double span = clip.end - clip.start;
+double frame_count(const AnimationClip& clip, double fps) {
   // A frame at the end itself is kept even when rounding puts it a hair beyond: keyframe
   // times are 32-bit floats in a file.
-  const auto last = static_cast<long>(std::floor(span * fps + 1e-3));
-  for (long k = 0; k <= last; ++k) times.push_back(clip.start + static_cast<double>(k) / fps);
+  return std::floor((clip.end - clip.start) * fps + 1e-3) + 1.0;
+}
+
+std::vector<double> frame_times(const AnimationClip& clip, double fps) {
+  std::vector<double> times;
+  const auto count = static_cast<long>(frame_count(clip, fps));
+  for (long k = 0; k < count; ++k) times.push_back(clip.start + static_cast<double>(k) / fps);
   return times;
 }
 

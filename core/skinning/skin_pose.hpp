@@ -63,6 +63,9 @@ std::vector<Eigen::Matrix4d> joint_worlds(const SkinBinding& skin, const Skeleto
 std::vector<Eigen::Matrix4d> posed_joint_worlds(const SkinBinding& skin, const AnimationClip& clip,
                                                 const ClipBinding& binding, double time);
 
+/// How many times a clip is sampled at `fps` (frame_times(clip, fps).size()). @pre fps > 0.
+double frame_count(const AnimationClip& clip, double fps);
+
 /// The times at which a clip is sampled: from its start, every 1/fps seconds, up to its end.
 /// @pre fps > 0.
 std::vector<double> frame_times(const AnimationClip& clip, double fps);

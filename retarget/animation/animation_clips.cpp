@@ -32,7 +32,7 @@ std::vector<AnimationClip> clips_of(const std::string& path) {
 }  // namespace
 
 std::vector<ChosenClip> choose_clips(const std::vector<std::string>& specs,
-                                     const std::string& avatar_path) {
+                                     const std::string& avatar_path, double fps) {
   std::map<std::string, std::vector<AnimationClip>> files;
   const auto clips_in = [&](const std::string& path) -> const std::vector<AnimationClip>& {
     auto it = files.find(path);
@@ -43,6 +43,11 @@ std::vector<ChosenClip> choose_clips(const std::vector<std::string>& specs,
   const auto add = [&](const AnimationClip& clip) {
     for (const ChosenClip& c : chosen)
       if (c.clip.file == clip.file && c.clip.name == clip.name) return;
+    if (const double frames = frame_count(clip, fps); !(frames <= kMaxClipFrames))
+      throw InputError(clip.file, 0,
+                       fmt::format("animation '{}' ({:.3g} s) sampled at {:g} fps takes {:.3g} "
+                                   "frames, more than {:g}: lower --fps",
+                                   clip.name, clip.end - clip.start, fps, frames, kMaxClipFrames));
     const bool own = clip.file == avatar_path || same_file(clip.file, avatar_path);
     chosen.push_back({clip, own ? ClipTranslations::kAll : ClipTranslations::kRoots});
   };

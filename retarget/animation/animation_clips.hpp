@@ -16,12 +16,17 @@ struct ChosenClip {
   ClipTranslations translations = ClipTranslations::kAll;
 };
 
+/// Frames a clip may be sampled in: a clip of ten minutes at 120 fps, far beyond the
+/// platforms' clips, and a bound on the memory the frames take.
+constexpr double kMaxClipFrames = 100000.0;
+
 /// The clips `specs` name, in order. A spec is `all` (every clip of the avatar's file), the
 /// name of a clip of the avatar's file, a glTF file (every clip in it), or `FILE#NAME` (the
 /// clip of that file so named). A clip named twice is played once.
 /// @throw InputError naming the file for a file that cannot be read, a clip name it does not
-///        have (the message lists the names), or a file with no animation.
+///        have (the message lists the names), a file with no animation, or a clip that `fps`
+///        would sample in more than kMaxClipFrames frames.
 std::vector<ChosenClip> choose_clips(const std::vector<std::string>& specs,
-                                     const std::string& avatar_path);
+                                     const std::string& avatar_path, double fps);
 
 }  // namespace gr

@@ -54,7 +54,7 @@ AnimateOutput run_animate(const AnimateInput& input, const AnimateOptions& optio
                           Progress& progress) {
   const Stopwatch stopwatch;
   progress.start("animate");
-  const std::vector<ChosenClip> clips = choose_clips(options.clips, input.avatar);
+  const std::vector<ChosenClip> clips = choose_clips(options.clips, input.avatar, options.fps);
   const AnimatedScene scene = read_animated_scene(input.written_files, input.written_meshes,
                                                   input.avatar, input.avatar_meshes);
   AnimateOutput output;

@@ -156,6 +156,24 @@ TEST_CASE("validate --animation refuses a clip it cannot find and an unskinned g
                     "validate_animation_unskinned");
   CHECK(unskinned.exit_code == 2);
   CHECK_THAT(unskinned.err, Catch::Contains("sleeve.obj") && Catch::Contains("skin"));
+
+  // A rate that would sample the 1 s clip in a billion frames is refused before any frame
+  // is posed, by validate and by retarget, which then writes nothing.
+  const test::CliRun too_fast =
+      test::run_cli({"validate", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+                     (dir / "arm.glb").string(), "--animation", "bend", "--fps", "1e9"},
+                    "validate_animation_too_fast");
+  CHECK(too_fast.exit_code == 2);
+  CHECK_THAT(too_fast.err, Catch::Contains("'bend'") && Catch::Contains("lower --fps"));
+  CHECK(test::lines_of(too_fast.err).size() == 1);
+  const auto out = dir / "too-fast";
+  const test::CliRun retarget_too_fast = test::run_cli(
+      {"retarget", "--garment", (dir / "sleeve.glb").string(), "--avatar",
+       (dir / "arm.glb").string(), "--animation", "bend", "--fps", "1e9", "--out", out.string()},
+      "retarget_animation_too_fast");
+  CHECK(retarget_too_fast.exit_code == 2);
+  CHECK_THAT(retarget_too_fast.err, Catch::Contains("lower --fps"));
+  CHECK_FALSE(std::filesystem::exists(out));
 }
 
 TEST_CASE("retarget --animation writes a sleeve certified in every frame, and validate agrees",

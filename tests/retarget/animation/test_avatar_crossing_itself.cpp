@@ -15,7 +15,7 @@ ClipFindings bent_arm_findings(double degrees, const char* name) {
   write_bending_arm_scene(make_bending_arm_scene(degrees), dir.string());
   const std::string arm = (dir / "arm.glb").string();
   const AnimatedScene scene = read_animated_scene({(dir / "sleeve.glb").string()}, {""}, arm, {});
-  return check_clip(scene, choose_clips({"bend"}, arm).front(), 30.0);
+  return check_clip(scene, choose_clips({"bend"}, arm, 30.0).front(), 30.0);
 }
 
 TEST_CASE("a crossing frame says when the avatar's own skin crosses itself there", "[animation]") {

@@ -22,7 +22,7 @@ TEST_CASE("the page's clip agrees frame by frame with the clip's exact check",
   const std::string sleeve = (dir / "sleeve.glb").string();
   const std::string arm = (dir / "arm.glb").string();
   const AnimatedScene scene = read_animated_scene({sleeve}, {""}, arm, {});
-  const ChosenClip clip = choose_clips({"bend"}, arm).front();
+  const ChosenClip clip = choose_clips({"bend"}, arm, 30.0).front();
   ClipPoses poses;
   const ClipFindings findings = check_clip(scene, clip, 30.0, &poses);
   REQUIRE(findings.worst_frame());
