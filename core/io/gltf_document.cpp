@@ -290,6 +290,8 @@ SkinBinding read_skin(const tinygltf::Model& model, int skin_index, const NodeGr
     joint.world = graph.world[node];
     set_rest_transform(model.nodes[node], joint);
     if (const int parent_node = graph.parent[node]; parent_node >= 0) {
+      if (joint_of_node[static_cast<std::size_t>(parent_node)] < 0)
+        joint.parent_offset_name = model.nodes[static_cast<std::size_t>(parent_node)].name;
       joint.parent_offset = graph.world[static_cast<std::size_t>(parent_node)];
       if (joint.parent >= 0)
         joint.parent_offset = graph

@@ -31,6 +31,9 @@ struct SkinJoint {
   /// From the parent joint's frame (the world for a joint without one) to the joint's
   /// parent node's: the nodes between that are not joints of the skin, such as an armature.
   Eigen::Matrix4d parent_offset = Eigen::Matrix4d::Identity();
+  /// The name of the joint's parent node when that is not a joint of the skin (empty:
+  /// none, or no name).
+  std::string parent_offset_name;
 };
 
 /// A skin: joints, and per document position the weight of each joint.

@@ -299,39 +299,81 @@ int copy_attribute(const tinygltf::Model& source, int index, const std::string& 
                           a.maxValues);
 }
 
+/// `local` as a node's translation, rotation and scale.
+void set_transform(const Eigen::Matrix4d& local, tinygltf::Node& node) {
+  const Eigen::Affine3d affine(local);
+  Eigen::Matrix3d rotation;
+  Eigen::Matrix3d scaling;
+  affine.computeRotationScaling(&rotation, &scaling);
+  const Eigen::Quaterniond q(rotation);
+  node.translation = {local(0, 3), local(1, 3), local(2, 3)};
+  node.rotation = {q.x(), q.y(), q.z(), q.w()};
+  node.scale = {scaling(0, 0), scaling(1, 1), scaling(2, 2)};
+}
+
 /// The skin's joints as nodes (after the mesh nodes, same order) with the skin over them.
+/// A joint whose parent node is not a joint (an armature that turns or scales the rig)
+/// keeps such a parent, holding its parent_offset, after the joints: an animation sets the
+/// joint's own transform, under that parent, as it does in the skin's own file.
 void add_skin(const SkinBinding& skin, GlbBuilder& glb, std::vector<int>& scene_roots) {
   const int first = static_cast<int>(glb.model.nodes.size());
+  const auto count = static_cast<int>(skin.joints.size());
   std::vector<float> inverse_bind;
   tinygltf::Skin out;
+  // Per joint, the node holding its parent_offset (-1: none), one per distinct offset.
+  std::vector<int> offset_node(skin.joints.size(), -1);
+  std::vector<std::size_t> offset_owner;  // per offset node, the first joint it holds
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const SkinJoint& joint = skin.joints[j];
+    if (joint.parent_offset == Eigen::Matrix4d::Identity()) continue;
+    for (std::size_t k = 0; k < offset_owner.size(); ++k) {
+      const SkinJoint& other = skin.joints[offset_owner[k]];
+      if (other.parent == joint.parent && other.parent_offset == joint.parent_offset &&
+          other.parent_offset_name == joint.parent_offset_name)
+        offset_node[j] = first + count + static_cast<int>(k);
+    }
+    if (offset_node[j] >= 0) continue;
+    offset_node[j] = first + count + static_cast<int>(offset_owner.size());
+    offset_owner.push_back(j);
+  }
   for (std::size_t j = 0; j < skin.joints.size(); ++j) {
     const SkinJoint& joint = skin.joints[j];
     tinygltf::Node node;
     node.name = joint.name;
-    const Eigen::Matrix4d local =
+    Eigen::Matrix4d local =
         joint.parent >= 0
             ? Eigen::Matrix4d(skin.joints[static_cast<std::size_t>(joint.parent)].world.inverse() *
                               joint.world)
             : joint.world;
-    const Eigen::Affine3d affine(local);
-    Eigen::Matrix3d rotation;
-    Eigen::Matrix3d scaling;
-    affine.computeRotationScaling(&rotation, &scaling);
-    const Eigen::Quaterniond q(rotation);
-    node.translation = {local(0, 3), local(1, 3), local(2, 3)};
-    node.rotation = {q.x(), q.y(), q.z(), q.w()};
-    node.scale = {scaling(0, 0), scaling(1, 1), scaling(2, 2)};
+    if (offset_node[j] >= 0) local = joint.parent_offset.inverse() * local;
+    set_transform(local, node);
     glb.model.nodes.push_back(node);
-    if (joint.parent < 0) scene_roots.push_back(first + static_cast<int>(j));
+    if (joint.parent < 0 && offset_node[j] < 0) scene_roots.push_back(first + static_cast<int>(j));
     out.joints.push_back(first + static_cast<int>(j));
   }
+  for (const std::size_t j : offset_owner) {
+    const SkinJoint& joint = skin.joints[j];
+    tinygltf::Node node;
+    node.name = joint.parent_offset_name;
+    set_transform(joint.parent_offset, node);
+    const int index = static_cast<int>(glb.model.nodes.size());
+    glb.model.nodes.push_back(node);
+    if (joint.parent < 0)
+      scene_roots.push_back(index);
+    else
+      glb.model.nodes[static_cast<std::size_t>(first + joint.parent)].children.push_back(index);
+  }
+  for (std::size_t j = 0; j < skin.joints.size(); ++j)
+    if (offset_node[j] >= 0)
+      glb.model.nodes[static_cast<std::size_t>(offset_node[j])].children.push_back(
+          first + static_cast<int>(j));
   // The rest pose the nodes give, so that rest positions are bind positions.
   for (std::size_t j = 0; j < skin.joints.size(); ++j) {
     const Eigen::Matrix4d ibm = skin.joints[j].world.inverse();
     for (int i = 0; i < 16; ++i) inverse_bind.push_back(static_cast<float>(ibm(i % 4, i / 4)));
   }
   for (std::size_t j = 0; j < skin.joints.size(); ++j)
-    if (skin.joints[j].parent >= 0)
+    if (skin.joints[j].parent >= 0 && offset_node[j] < 0)
       glb.model.nodes[static_cast<std::size_t>(first + skin.joints[j].parent)].children.push_back(
           first + static_cast<int>(j));
   out.inverseBindMatrices = glb.add_floats(inverse_bind, TINYGLTF_TYPE_MAT4, 16, 0, false);
@@ -496,11 +538,17 @@ int add_mesh(const GlbMesh& in, const std::string& name, int first_material, Glb
   return static_cast<int>(glb.model.meshes.size()) - 1;
 }
 
-/// The clips' channels on written nodes (by name), each with its own sampler.
+/// The clips' channels on written mesh and joint nodes (by name), each with its own
+/// sampler; not on the nodes that hold a rig's armature, which a clip of another file may
+/// name but which stays as it is in the skin's own file.
 void add_animations(const std::vector<AnimationClip>& clips, GlbBuilder& glb) {
+  std::vector<char> animated(glb.model.nodes.size(), 0);
+  for (const tinygltf::Skin& skin : glb.model.skins)
+    for (const int joint : skin.joints) animated[static_cast<std::size_t>(joint)] = 1;
   std::map<std::string, int> node_of_name;
   for (std::size_t n = 0; n < glb.model.nodes.size(); ++n)
-    node_of_name.emplace(glb.model.nodes[n].name, static_cast<int>(n));
+    if (animated[n] || glb.model.nodes[n].mesh >= 0)
+      node_of_name.emplace(glb.model.nodes[n].name, static_cast<int>(n));
   for (const AnimationClip& clip : clips) {
     tinygltf::Animation animation;
     animation.name = clip.name;

@@ -16,13 +16,12 @@ double largest_gap(const MatrixX3d& a, const MatrixX3d& b) {
   return (a - b).rowwise().norm().maxCoeff();
 }
 
-TEST_CASE("posing a skin at its rest values gives back the positions read",
-          "[skinning][animation]") {
-  const auto dir = test::fresh_temp_dir("skin_pose_rest");
-  const BendingArmScene scene = make_bending_arm_scene(90.0);
+/// The scene's arm.glb in `dir`, and beside it armature.glb: the arm under an armature
+/// turned, scaled and moved, as exporters write one, so that the joints' worlds pass
+/// through a node that is not a joint. Returns the latter's path.
+std::string write_arm_under_armature(const BendingArmScene& scene,
+                                     const std::filesystem::path& dir) {
   write_bending_arm_scene(scene, dir.string());
-  // An armature above the joints, turned and scaled, as exporters write it: the joints'
-  // worlds then pass through a node that is not a joint.
   tinygltf::Model model = test::load_glb((dir / "arm.glb").string());
   tinygltf::Node armature;
   armature.name = "Armature";
@@ -37,6 +36,14 @@ TEST_CASE("posing a skin at its rest values gives back the positions read",
   roots.push_back(static_cast<int>(model.nodes.size()) - 1);
   const std::string path = (dir / "armature.glb").string();
   test::save_model(model, path, true);
+  return path;
+}
+
+TEST_CASE("posing a skin at its rest values gives back the positions read",
+          "[skinning][animation]") {
+  const auto dir = test::fresh_temp_dir("skin_pose_rest");
+  const BendingArmScene scene = make_bending_arm_scene(90.0);
+  const std::string path = write_arm_under_armature(scene, dir);
 
   const GltfAsset asset = read_gltf(path);
   REQUIRE(asset.gltf.skin);
@@ -52,6 +59,54 @@ TEST_CASE("posing a skin at its rest values gives back the positions read",
     CHECK((worlds[j] - skin.joints[j].world).cwiseAbs().maxCoeff() < 1e-12);
   const SkinnedMesh skinned = prepare_skinned_mesh(skin, asset.document.positions);
   CHECK(largest_gap(pose_skinned_mesh(skin, skinned, worlds), asset.document.positions) < 1e-12);
+}
+
+TEST_CASE("a skin under an armature, written and read back, poses as in its own file",
+          "[skinning][animation][io]") {
+  const auto dir = test::fresh_temp_dir("skin_pose_armature_written");
+  const BendingArmScene scene = make_bending_arm_scene(90.0);
+  const GltfAsset asset = read_gltf(write_arm_under_armature(scene, dir));
+  const SkinBinding& skin = *asset.gltf.skin;
+  // The clip bends the elbow and turns the shoulder, the root joint, about +z.
+  AnimationClip clip = scene.bend;
+  AnimationChannel turn;
+  turn.node = skin.joints[0].name;
+  turn.times = {clip.start, clip.end};
+  turn.values.resize(2, 4);
+  turn.values << 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, std::sin(0.2), std::cos(0.2);
+  clip.channels.push_back(turn);
+  const std::string written = (dir / "written.glb").string();
+  write_glb_meshes(written,
+                   {GlbMesh{"arm", &asset.document, &asset.gltf, asset.document.positions, &skin}},
+                   {clip});
+
+  const GltfAsset again = read_gltf(written);
+  REQUIRE(again.gltf.skin);
+  const SkinBinding& read_back = *again.gltf.skin;
+  REQUIRE(read_back.joints.size() == skin.joints.size());
+  CHECK(read_back.joints[0].parent_offset_name == "Armature");
+  CHECK(largest_gap(again.document.positions, asset.document.positions) < 1e-5);
+  // The clip sets the joints' own transforms under the armature, in either file alike: a
+  // file with the armature baked into its root joint would lose the armature's turn and
+  // scale as soon as a clip set that joint.
+  REQUIRE(bind_clip(skin, clip, ClipTranslations::kAll).driven_joints == 2);
+  for (const double time : {0.0, 0.5, 1.0}) {
+    const std::vector<Eigen::Matrix4d> own =
+        posed_joint_worlds(skin, clip, bind_clip(skin, clip, ClipTranslations::kAll), time);
+    const std::vector<Eigen::Matrix4d> back = posed_joint_worlds(
+        read_back, clip, bind_clip(read_back, clip, ClipTranslations::kAll), time);
+    for (std::size_t j = 0; j < own.size(); ++j)
+      CHECK((own[j] - back[j]).cwiseAbs().maxCoeff() < 1e-6);
+  }
+  // The written clip drives the joints, never the armature.
+  const tinygltf::Model model = test::load_glb(written);
+  int armature = -1;
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    if (model.nodes[n].name == "Armature") armature = static_cast<int>(n);
+  REQUIRE(armature >= 0);
+  REQUIRE(model.animations.size() == 1);
+  for (const tinygltf::AnimationChannel& channel : model.animations[0].channels)
+    CHECK(channel.target_node != armature);
 }
 
 TEST_CASE("a bent elbow turns the forearm rigidly and blends the band around it",
