@@ -99,6 +99,31 @@ void require_comparable_sizes(const Scene& scene, const NormalizedScene& normali
                   kMaxGarmentToAvatarSize));
 }
 
+void require_garment_on_avatar(const Scene& scene, const NormalizedScene& normalized) {
+  if (scene.source_skeleton && scene.target_skeleton) return;
+  const auto box_of = [](const MatrixX3d& points) {
+    return Eigen::AlignedBox3d(points.colwise().minCoeff().transpose(),
+                               points.colwise().maxCoeff().transpose());
+  };
+  const Eigen::AlignedBox3d garment = box_of(normalized.garment.vertices);
+  const Eigen::AlignedBox3d avatar = box_of(normalized.avatar.vertices);
+  const Vector3d gap =
+      (garment.min() - avatar.max()).cwiseMax(avatar.min() - garment.max()).cwiseMax(0.0);
+  if (gap.norm() <= kMaxGarmentGapToAvatarSize * avatar.sizes().maxCoeff()) return;
+  const Similarity& frame = normalized.normalization.avatar_to_scene;
+  const Vector3d garment_centre = frame.invert(garment.center());
+  const Vector3d avatar_centre = frame.invert(avatar.center());
+  throw InputError(
+      scene.garment_document.source_path, 0,
+      fmt::format("the garment (centred at {:.4g} {:.4g} {:.4g}) lies further from the avatar's "
+                  "bounding box (centred at {:.4g} {:.4g} {:.4g}) than the avatar's size, and "
+                  "no skeleton places it: "
+                  "move it onto the avatar, or give skeletons (skinned glTF files, or "
+                  "--source-skeleton and --target-skeleton)",
+                  garment_centre.x(), garment_centre.y(), garment_centre.z(), avatar_centre.x(),
+                  avatar_centre.y(), avatar_centre.z()));
+}
+
 Normalization normalize_scene(const Scene& scene) {
   Normalization n;
   if (scene.source_skeleton && scene.target_skeleton) {

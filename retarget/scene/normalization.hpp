@@ -79,4 +79,16 @@ constexpr double kMaxGarmentToAvatarSize = 1e2;
 /// @throw InputError giving both sizes in their files' units.
 void require_comparable_sizes(const Scene& scene, const NormalizedScene& normalized);
 
+/// How far a garment that no skeleton places may lie from the avatar: the gap between
+/// their bounding boxes, in avatar sizes (the box's largest side). A synthetic fin or patch
+/// hovering just off a body lies a quarter of one away.
+constexpr double kMaxGarmentGapToAvatarSize = 1.0;
+
+/// Refuses a garment that no skeleton places and that lies further from the avatar than
+/// kMaxGarmentGapToAvatarSize: without skeletons a garment is retargeted where it lies in
+/// the avatar's frame, and one far beside the avatar (a file of another frame, or not moved
+/// onto it) would be pulled onto the body from there and crushed.
+/// @throw InputError naming both boxes' centres in the avatar's units.
+void require_garment_on_avatar(const Scene& scene, const NormalizedScene& normalized);
+
 }  // namespace gr

@@ -259,6 +259,7 @@ NormalizedScene normalize(const Scene& scene, double thinnest_barrier,
                           std::vector<FacePair>& crossing_pairs) {
   NormalizedScene normalized = make_normalized_scene(scene, lattice_spacing(thinnest_barrier));
   require_comparable_sizes(scene, normalized);
+  require_garment_on_avatar(scene, normalized);
   // Rounding to the lattice can fold a sliver or close a hairline gap.
   SelfIntersections self = find_self_intersecting_face_pairs(normalized.garment);
   if (self.pairs.count > 0 && normalized.lattice > 0.0) {

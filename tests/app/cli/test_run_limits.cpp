@@ -3,10 +3,12 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -52,6 +54,22 @@ nlohmann::json read_json(const fs::path& path) {
 }
 
 /// One error line, naming `text`.
+/// Copies the OBJ `from` to `to` with each vertex position changed by `move`.
+void write_moved_copy(const std::string& from, const fs::path& to,
+                      const std::function<void(Eigen::Vector3d&)>& move) {
+  std::ifstream in(from);
+  std::ofstream out(to);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("v ", 0) == 0) {
+      Eigen::Vector3d v;
+      std::sscanf(line.c_str(), "v %lf %lf %lf", &v.x(), &v.y(), &v.z());
+      move(v);
+      line = fmt::format("v {:.17g} {:.17g} {:.17g}", v.x(), v.y(), v.z());
+    }
+    out << line << '\n';
+  }
+}
+
 void check_one_error_line(const CliRun& run, const std::string& text) {
   CAPTURE(run.err);
   const auto lines = gr::test::lines_of(run.err);
@@ -198,23 +216,27 @@ TEST_CASE("An inferred no-fit list, even an empty one, is read back", "[cli][lim
         gr::to_exit_code(gr::Outcome::kCertified));
 }
 
+TEST_CASE("A garment beside the avatar with no skeleton to place it is named, not retargeted",
+          "[cli][limits]") {
+  // The bundled garment moved four metres aside, two heights of the avatar: without
+  // skeletons nothing could bring it onto the body.
+  const fs::path root = gr::test::fresh_temp_dir("garment_beside_avatar");
+  const fs::path garment = root / "garment.obj";
+  write_moved_copy(bundled("garment.obj"), garment, [](Eigen::Vector3d& v) { v.x() += 4.0; });
+  std::vector<std::string> args = bundled_retarget(root / "out");
+  args[2] = garment.string();
+  const CliRun run = gr::test::run_cli(args, "garment_beside_avatar");
+  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
+  check_one_error_line(run, "lies further from the avatar's bounding box");
+  CHECK_FALSE(fs::exists(root / "out"));
+}
+
 TEST_CASE("Garment and avatar sizes far apart are named, not retargeted", "[cli][limits]") {
   const fs::path root = gr::test::fresh_temp_dir("extreme_sizes");
   for (const double scale : {1e-9, 1e9}) {
     CAPTURE(scale);
     const fs::path avatar = root / fmt::format("avatar_{:g}.obj", scale);
-    {
-      std::ifstream in(bundled("avatar.obj"));
-      std::ofstream out(avatar);
-      for (std::string line; std::getline(in, line);) {
-        if (line.rfind("v ", 0) == 0) {
-          double x, y, z;
-          std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z);
-          line = fmt::format("v {:.17g} {:.17g} {:.17g}", x * scale, y * scale, z * scale);
-        }
-        out << line << '\n';
-      }
-    }
+    write_moved_copy(bundled("avatar.obj"), avatar, [&](Eigen::Vector3d& v) { v *= scale; });
     std::vector<std::string> args = bundled_retarget(root / "out");
     args[4] = avatar.string();
     const CliRun run = gr::test::run_cli(args, "extreme_sizes");
