@@ -299,6 +299,9 @@ int copy_attribute(const tinygltf::Model& source, int index, const std::string& 
                           a.maxValues);
 }
 
+/// Parent offsets this close to the identity (in every entry) are taken as none.
+constexpr double kIdentityTolerance = 1e-9;
+
 /// `local` as a node's translation, rotation and scale.
 void set_transform(const Eigen::Matrix4d& local, tinygltf::Node& node) {
   const Eigen::Affine3d affine(local);
@@ -325,7 +328,8 @@ void add_skin(const SkinBinding& skin, GlbBuilder& glb, std::vector<int>& scene_
   std::vector<std::size_t> offset_owner;  // per offset node, the first joint it holds
   for (std::size_t j = 0; j < skin.joints.size(); ++j) {
     const SkinJoint& joint = skin.joints[j];
-    if (joint.parent_offset == Eigen::Matrix4d::Identity()) continue;
+    // A joint right under its parent joint reads an offset off the identity by rounding.
+    if (joint.parent_offset.isIdentity(kIdentityTolerance)) continue;
     for (std::size_t k = 0; k < offset_owner.size(); ++k) {
       const SkinJoint& other = skin.joints[offset_owner[k]];
       if (other.parent == joint.parent && other.parent_offset == joint.parent_offset &&

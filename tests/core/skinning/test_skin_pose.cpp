@@ -104,6 +104,9 @@ TEST_CASE("a skin under an armature, written and read back, poses as in its own 
   for (std::size_t n = 0; n < model.nodes.size(); ++n)
     if (model.nodes[n].name == "Armature") armature = static_cast<int>(n);
   REQUIRE(armature >= 0);
+  // One node more than the mesh and its joints: the armature, and nothing for the joints
+  // right under their parent joints.
+  CHECK(model.nodes.size() == skin.joints.size() + 2);
   REQUIRE(model.animations.size() == 1);
   for (const tinygltf::AnimationChannel& channel : model.animations[0].channels)
     CHECK(channel.target_node != armature);
