@@ -423,10 +423,14 @@ const char* to_string(TangleLeft reason) {
     case TangleLeft::kBudget:
       return "undoing it would move a vertex beyond the displacement budget";
     case TangleLeft::kPinned: return "the vertices it would move are held (split edge copies)";
-    case TangleLeft::kAdded: return "made by a push that undid more crossings than it made";
     case TangleLeft::kStalled: break;
   }
   return "no push made the crossings fewer or shallower";
+}
+
+std::string describe(const LeftCrossing& left) {
+  const std::string reason = to_string(left.reason);
+  return left.made ? "made by a push that undid more crossings than it made; " + reason : reason;
 }
 
 Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<FacePair>& pairs,
@@ -670,24 +674,25 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
 
   out.vertices = current.vertices;
   out.remaining = now.pairs;
+  // Why a pair still crosses: what blocks its push, else the budget it would go beyond.
+  const auto reason_left = [&](const FacePair& p) {
+    const PairPush push = pusher.push(out.vertices, p);
+    if (push.moves.empty()) return push.blocked;
+    bool budget = !(push.depth <= 2.0 * options.max_displacement);
+    for (const auto& move : push.moves) budget |= at_budget[static_cast<std::size_t>(move.first)];
+    return budget ? TangleLeft::kBudget : TangleLeft::kStalled;
+  };
   for (const FacePair& p : input) {
     if (!contains(now.pairs, p)) {
       ++out.resolved;
       continue;
     }
-    const PairPush push = pusher.push(out.vertices, p);
-    TangleLeft reason = push.moves.empty() ? push.blocked : TangleLeft::kStalled;
-    if (!push.moves.empty()) {
-      bool budget = !(push.depth <= 2.0 * options.max_displacement);
-      for (const auto& move : push.moves) budget |= at_budget[static_cast<std::size_t>(move.first)];
-      if (budget) reason = TangleLeft::kBudget;
-    }
-    out.left.push_back({p, reason});
+    out.left.push_back({p, reason_left(p)});
   }
   for (const FacePair& p : now.pairs)
     if (!contains(input, p)) {
       ++out.added;
-      out.left.push_back({p, TangleLeft::kAdded});
+      out.left.push_back({p, reason_left(p), true});
     }
   for (std::size_t v = 0; v < n; ++v) {
     const double moved = (out.vertices.row(static_cast<Eigen::Index>(v)) -

@@ -50,22 +50,27 @@ enum class TangleLeft {
   kBudget,      ///< undoing it would move a vertex further than max_displacement
   kPinned,      ///< every vertex that would have to move is pinned
   kStalled,     ///< every push tried made the crossings no fewer (within max_rounds)
-  kAdded,       ///< not crossing as given: a push that undid more crossings made it
 };
 
 const char* to_string(TangleLeft reason);
 
-/// A crossing pair left as given, with why.
+/// A crossing pair left, with why: one the input came with, or one a push made.
 struct LeftCrossing {
   FacePair pair;
   TangleLeft reason = TangleLeft::kStalled;
+  /// Not crossing as given: made by a push that undid more crossings than it made.
+  bool made = false;
 };
+
+/// Why `left` crosses, in words: its reason, after how it came to cross when a push made it.
+std::string describe(const LeftCrossing& left);
 
 /// The untangled garment and what is left crossing.
 struct Untangled {
   MatrixX3d vertices;               ///< #V×3, the garment with its crossings undone
   std::vector<FacePair> remaining;  ///< pairs still crossing (first < second), sorted
-  /// The pairs still crossing, with why: the input's first, then those the untangle made.
+  /// The pairs still crossing, with why: the input's first, then those the untangle made
+  /// (LeftCrossing::made).
   std::vector<LeftCrossing> left;
   int pairs_before = 0;           ///< crossing pairs of the input
   int resolved = 0;               ///< of those, the pairs that no longer cross

@@ -195,9 +195,8 @@ void untangle(Repairing& r) {
   report.layer_pairs_resolved = report.layer_pairs;
   for (const LeftCrossing& left : untangled.left) {
     report.left_document_pairs.push_back(document_pair(left.pair));
-    report.left_reasons.emplace_back(to_string(left.reason));
-    if (left.reason != TangleLeft::kAdded)
-      report.layer_pairs_resolved -= between_layers(left.pair) ? 1 : 0;
+    report.left_reasons.push_back(describe(left));
+    if (!left.made) report.layer_pairs_resolved -= between_layers(left.pair) ? 1 : 0;
   }
   if (untangled.moved_vertices > 0) {
     const double diagonal = (normalized.garment.vertices.colwise().maxCoeff() -
