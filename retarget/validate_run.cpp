@@ -137,7 +137,7 @@ ValidateResult run_validate(const ValidateOptions& given) {
   }
   // Certified means every frame too.
   for (const ClipFindings& clip : clips)
-    if (clip.crossing_frames() > 0) result.report["certified"] = false;
+    if (!clip.certified()) result.report["certified"] = false;
   StagedFiles outputs;
   if (!options.report.empty()) write_json_file(outputs.stage(options.report), result.report);
   if (!options.marks.empty()) write_marks_obj(outputs.stage(options.marks), validation);
@@ -163,17 +163,22 @@ ValidateResult run_validate(const ValidateOptions& given) {
         shapes[g].area_change, shapes[g].loop_displacement);
   if (!result.warnings.empty()) result.summary += "; SHAPE CHANGED beyond its thresholds";
   bool frames_cross = false;
+  bool rigs_disagree = false;
   for (const ClipFindings& clip : clips) {
     result.summary += "; " + clip_summary(clip);
     frames_cross = frames_cross || clip.crossing_frames() > 0;
+    rigs_disagree = rigs_disagree || !clip.rigs_agree();
   }
   // The files' own pose may be free while frames of a clip cross: the line says so first.
-  if (frames_cross && validation.result.certified())
-    result.summary =
-        "NOT certified (frames of an animation cross), pose as given " + result.summary;
-  result.status = !validation.result.certified() || frames_cross ? Outcome::kNotCertified
-                  : result.warnings.empty()                      ? Outcome::kCertified
-                                                                 : Outcome::kShapeChanged;
+  if ((frames_cross || rigs_disagree) && validation.result.certified())
+    result.summary = std::string(frames_cross ? "NOT certified (frames of an animation cross)"
+                                              : "NOT certified (an animation poses the garment "
+                                                "by a rig placed otherwise than the avatar's)") +
+                     ", pose as given " + result.summary;
+  result.status = !validation.result.certified() || frames_cross || rigs_disagree
+                      ? Outcome::kNotCertified
+                  : result.warnings.empty() ? Outcome::kCertified
+                                            : Outcome::kShapeChanged;
   return result;
 }
 

@@ -1,6 +1,7 @@
 #include "retarget/animation/animation_check.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -83,6 +84,29 @@ TriangleMesh posed(const AnimatedScene::Part& part, const std::vector<Eigen::Mat
   return {
       pose_skinned_mesh(*part.asset.gltf.skin, part.skinned, worlds, morphed ? &offsets : nullptr),
       part.mesh.faces};
+}
+
+/// Per garment, its joints (garment joint, avatar joint) that share a name with an avatar
+/// joint and lie within `tolerance` of it at rest.
+std::vector<std::vector<std::pair<int, int>>> joints_at_rest_together(const AnimatedScene& scene,
+                                                                      double tolerance) {
+  const SkinBinding& avatar_skin = *scene.avatar.asset.gltf.skin;
+  std::map<std::string, int> avatar_joint;
+  for (std::size_t j = 0; j < avatar_skin.joints.size(); ++j)
+    avatar_joint.emplace(avatar_skin.joints[j].name, static_cast<int>(j));
+  std::vector<std::vector<std::pair<int, int>>> together(scene.garments.size());
+  for (std::size_t g = 0; g < scene.garments.size(); ++g) {
+    const SkinBinding& skin = *scene.garments[g].asset.gltf.skin;
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      const auto match = avatar_joint.find(skin.joints[j].name);
+      if (match == avatar_joint.end()) continue;
+      const Eigen::Matrix4d& rest =
+          avatar_skin.joints[static_cast<std::size_t>(match->second)].world;
+      if ((skin.joints[j].world.col(3) - rest.col(3)).norm() <= tolerance)
+        together[g].emplace_back(static_cast<int>(j), match->second);
+    }
+  }
+  return together;
 }
 
 }  // namespace
@@ -199,6 +223,13 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
   }
   const std::vector<double> times = frame_times(clip, fps);
   findings.frames.resize(times.size());
+  const MatrixX3d& avatar_rest = scene.avatar.mesh.vertices;
+  const double avatar_size =
+      (avatar_rest.colwise().maxCoeff() - avatar_rest.colwise().minCoeff()).maxCoeff();
+  findings.drift_limit = kMaxJointDrift * avatar_size;
+  const std::vector<std::vector<std::pair<int, int>>> same_joints =
+      joints_at_rest_together(scene, kSameJointAtRest * avatar_size);
+  std::vector<std::pair<double, int>> frame_drift(times.size(), {0.0, -1});
   if (poses) {
     poses->avatar.assign(times.size(), MatrixX3d());
     poses->garments.assign(times.size(), std::vector<MatrixX3d>());
@@ -206,15 +237,21 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
   tbb::parallel_for(std::size_t{0}, times.size(), [&](std::size_t f) {
     FrameFindings& frame = findings.frames[f];
     frame.time = times[f];
-    const TriangleMesh avatar =
-        posed(scene.avatar, posed_joint_worlds(avatar_skin, clip, avatar_binding, frame.time),
-              clip.name, frame.time);
+    const std::vector<Eigen::Matrix4d> avatar_worlds =
+        posed_joint_worlds(avatar_skin, clip, avatar_binding, frame.time);
+    const TriangleMesh avatar = posed(scene.avatar, avatar_worlds, clip.name, frame.time);
     std::vector<TriangleMesh> garments;
-    for (std::size_t g = 0; g < scene.garments.size(); ++g)
-      garments.push_back(posed(scene.garments[g],
-                               posed_joint_worlds(*scene.garments[g].asset.gltf.skin, clip,
-                                                  garment_bindings[g], frame.time),
-                               clip.name, frame.time));
+    for (std::size_t g = 0; g < scene.garments.size(); ++g) {
+      const std::vector<Eigen::Matrix4d> worlds = posed_joint_worlds(
+          *scene.garments[g].asset.gltf.skin, clip, garment_bindings[g], frame.time);
+      for (const auto& [joint, avatar_joint] : same_joints[g]) {
+        const double apart = (worlds[static_cast<std::size_t>(joint)].col(3) -
+                              avatar_worlds[static_cast<std::size_t>(avatar_joint)].col(3))
+                                 .norm();
+        if (apart > frame_drift[f].first) frame_drift[f] = {apart, avatar_joint};
+      }
+      garments.push_back(posed(scene.garments[g], worlds, clip.name, frame.time));
+    }
     frame = check_posed_frame(scene, garments, avatar, frame.time);
     if (explain && frame.total() > 0) {
       const std::vector<FacePair>& rest = scene.rest_avatar_self_pairs;
@@ -226,6 +263,13 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
       for (const TriangleMesh& garment : garments) poses->garments[f].push_back(garment.vertices);
     }
   });
+  for (std::size_t f = 0; f < times.size(); ++f)
+    if (frame_drift[f].first > findings.joint_drift) {
+      findings.joint_drift = frame_drift[f].first;
+      findings.drift_joint =
+          avatar_skin.joints[static_cast<std::size_t>(frame_drift[f].second)].name;
+      findings.drift_frame = f;
+    }
   findings.seconds = stopwatch.seconds();
   return findings;
 }
@@ -252,7 +296,16 @@ nlohmann::ordered_json to_json(const ClipFindings& findings) {
           {"unmatched_nodes", findings.unmatched_nodes},
           {"frame_count", findings.frames.size()},
           {"crossing_frames", findings.crossing_frames()},
-          {"certified", findings.crossing_frames() == 0},
+          {"joint_drift",
+           {{"largest", findings.joint_drift},
+            {"joint", findings.drift_joint},
+            {"frame", findings.drift_frame},
+            {"limit", findings.drift_limit},
+            {"meaning",
+             "how far a garment joint moves from the avatar joint of its name, among those "
+             "together at rest (file units); beyond the limit the two rigs are placed "
+             "otherwise, and the frames checked are not those an engine plays"}}},
+          {"certified", findings.certified()},
           {"avatar_crossing_itself_frames", findings.avatar_crossing_itself_frames()},
           {"first_crossing_frame", frame_json(findings.first_crossing())},
           {"worst_frame", frame_json(findings.worst_frame())},
@@ -272,6 +325,11 @@ std::string clip_summary(const ClipFindings& findings) {
     if (const std::size_t own = findings.avatar_crossing_itself_frames(); own > 0)
       line += fmt::format("; in {} of them the avatar crosses itself", own);
   }
+  if (!findings.rigs_agree())
+    line += fmt::format(
+        "; NOT certified: the garment's joint '{}' moves {:.3g} from the avatar's in frame {} "
+        "(together at rest): the two files place the rig otherwise (an armature?)",
+        findings.drift_joint, findings.joint_drift, findings.drift_frame);
   return line;
 }
 

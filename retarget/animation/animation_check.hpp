@@ -75,6 +75,18 @@ struct ClipFindings {
   std::vector<std::string> unmatched_nodes;  ///< clip nodes the avatar's skin lacks
   std::vector<FrameFindings> frames;
   double seconds = 0.0;
+  /// How far a garment joint moves from the avatar joint of its name, over the frames (file
+  /// units), among the joints that coincide at rest; the joint and frame where it is
+  /// largest. Apart, the clip poses the garment by a rig placed otherwise than the avatar's
+  /// (an armature one file has and the other baked into its root joint), so the frames
+  /// checked are not those an engine plays with the garment bound to the avatar's joints.
+  double joint_drift = 0.0;
+  std::string drift_joint;
+  std::size_t drift_frame = 0;
+  double drift_limit = 0.0;  ///< kMaxJointDrift of the avatar's size
+  bool rigs_agree() const { return joint_drift <= drift_limit; }
+  /// Every frame free, and the rigs in agreement.
+  bool certified() const { return crossing_frames() == 0 && rigs_agree(); }
 
   std::size_t crossing_frames() const;
   /// Of the crossing frames, those where the avatar crosses itself too.
@@ -84,6 +96,14 @@ struct ClipFindings {
   std::optional<std::size_t> first_crossing() const;
   std::optional<std::size_t> worst_frame() const;
 };
+
+/// The joint drift (ClipFindings::joint_drift) allowed, as a share of the avatar's size
+/// (its bounding box's largest side): far above the rounding of joint transforms, far below
+/// any move a rig placed otherwise makes.
+constexpr double kMaxJointDrift = 1e-3;
+/// Garment and avatar joints of one name this close at rest (share of the avatar's size)
+/// are one joint of one rig.
+constexpr double kSameJointAtRest = 1e-4;
 
 /// The meshes of every sampled frame of a clip as check_clip posed and checked them, in the
 /// files' frame and units.

@@ -46,7 +46,7 @@ AnimationChannel frame_weights(const std::string& node, const std::vector<double
 
 bool AnimateOutput::certified() const {
   for (const AnimationReport& clip : clips)
-    if (clip.written.crossing_frames() > 0) return false;
+    if (!clip.written.certified()) return false;
   return true;
 }
 

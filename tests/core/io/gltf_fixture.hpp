@@ -1,11 +1,14 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
 #include "core/io/gltf_document.hpp"
@@ -35,6 +38,49 @@ inline void save_model(const tinygltf::Model& model, const std::string& path, bo
   std::ofstream out(path, std::ios::binary);
   tinygltf::TinyGLTF writer;
   REQUIRE(writer.WriteGltfSceneToStream(&model, out, !binary, binary));
+}
+
+/// Copies the skinned GLB `from` to `to` with its rig under an armature turned, scaled and
+/// moved, as exporters write one: an "Armature" node above the skin's first joint or, with
+/// `bake`, that transform folded into the joint's own, as a writer that drops the armature
+/// leaves it. Either way the rest pose moves alike; a clip that sets the joint undoes a
+/// baked armature.
+inline void put_under_armature(const std::string& from, const std::string& to, bool bake) {
+  tinygltf::Model model = load_glb(from);
+  const Eigen::Quaterniond turn(std::cos(0.3), 0.0, std::sin(0.3), 0.0);
+  const double scale = 0.5;
+  const Eigen::Vector3d shift(0.1, -2.0, 0.3);
+  const int root = model.skins[0].joints[0];
+  auto& roots = model.scenes[0].nodes;
+  if (bake) {
+    tinygltf::Node& joint = model.nodes[static_cast<std::size_t>(root)];
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond r = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d s = Eigen::Vector3d::Ones();
+    if (joint.translation.size() == 3)
+      t = {joint.translation[0], joint.translation[1], joint.translation[2]};
+    if (joint.rotation.size() == 4)
+      r = Eigen::Quaterniond(joint.rotation[3], joint.rotation[0], joint.rotation[1],
+                             joint.rotation[2]);
+    if (joint.scale.size() == 3) s = {joint.scale[0], joint.scale[1], joint.scale[2]};
+    t = shift + scale * (turn * t);
+    r = turn * r;
+    s *= scale;
+    joint.translation = {t.x(), t.y(), t.z()};
+    joint.rotation = {r.x(), r.y(), r.z(), r.w()};
+    joint.scale = {s.x(), s.y(), s.z()};
+  } else {
+    tinygltf::Node armature;
+    armature.name = "Armature";
+    armature.rotation = {turn.x(), turn.y(), turn.z(), turn.w()};
+    armature.scale = {scale, scale, scale};
+    armature.translation = {shift.x(), shift.y(), shift.z()};
+    armature.children = {root};
+    model.nodes.push_back(armature);
+    roots.erase(std::find(roots.begin(), roots.end(), root));
+    roots.push_back(static_cast<int>(model.nodes.size()) - 1);
+  }
+  save_model(model, to, true);
 }
 
 /// A GLB made from an OBJ document: the geometry (and `skin`, if any) as write_glb writes

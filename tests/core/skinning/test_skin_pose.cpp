@@ -22,20 +22,8 @@ double largest_gap(const MatrixX3d& a, const MatrixX3d& b) {
 std::string write_arm_under_armature(const BendingArmScene& scene,
                                      const std::filesystem::path& dir) {
   write_bending_arm_scene(scene, dir.string());
-  tinygltf::Model model = test::load_glb((dir / "arm.glb").string());
-  tinygltf::Node armature;
-  armature.name = "Armature";
-  armature.rotation = {0.0, std::sin(0.3), 0.0, std::cos(0.3)};
-  armature.scale = {0.5, 0.5, 0.5};
-  armature.translation = {0.1, -2.0, 0.3};
-  const int shoulder = model.skins[0].joints[0];
-  armature.children = {shoulder};
-  model.nodes.push_back(armature);
-  auto& roots = model.scenes[0].nodes;
-  roots.erase(std::find(roots.begin(), roots.end(), shoulder));
-  roots.push_back(static_cast<int>(model.nodes.size()) - 1);
   const std::string path = (dir / "armature.glb").string();
-  test::save_model(model, path, true);
+  test::put_under_armature((dir / "arm.glb").string(), path, false);
   return path;
 }
 
