@@ -314,32 +314,44 @@ void set_transform(const Eigen::Matrix4d& local, tinygltf::Node& node) {
   node.scale = {scaling(0, 0), scaling(1, 1), scaling(2, 2)};
 }
 
+/// The armature nodes a skin's joints need (one per distinct parent offset off the
+/// identity), numbered from `first_node`.
+struct ArmatureNodes {
+  std::vector<int> of_joint;        ///< per joint, the node holding its parent_offset, or -1
+  std::vector<std::size_t> owners;  ///< per armature node, the first joint it holds
+};
+
+ArmatureNodes plan_armature_nodes(const SkinBinding& skin, int first_node) {
+  ArmatureNodes plan;
+  plan.of_joint.assign(skin.joints.size(), -1);
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    const SkinJoint& joint = skin.joints[j];
+    // A joint right under its parent joint reads an offset off the identity by rounding.
+    if (joint.parent_offset.isIdentity(kIdentityTolerance)) continue;
+    for (std::size_t k = 0; k < plan.owners.size() && plan.of_joint[j] < 0; ++k) {
+      const SkinJoint& other = skin.joints[plan.owners[k]];
+      if (other.parent == joint.parent && other.parent_offset == joint.parent_offset &&
+          other.parent_offset_name == joint.parent_offset_name)
+        plan.of_joint[j] = first_node + static_cast<int>(k);
+    }
+    if (plan.of_joint[j] >= 0) continue;
+    plan.of_joint[j] = first_node + static_cast<int>(plan.owners.size());
+    plan.owners.push_back(j);
+  }
+  return plan;
+}
+
 /// The skin's joints as nodes (after the mesh nodes, same order) with the skin over them.
 /// A joint whose parent node is not a joint (an armature that turns or scales the rig)
 /// keeps such a parent, holding its parent_offset, after the joints: an animation sets the
 /// joint's own transform, under that parent, as it does in the skin's own file.
 void add_skin(const SkinBinding& skin, GlbBuilder& glb, std::vector<int>& scene_roots) {
   const int first = static_cast<int>(glb.model.nodes.size());
-  const auto count = static_cast<int>(skin.joints.size());
   std::vector<float> inverse_bind;
   tinygltf::Skin out;
-  // Per joint, the node holding its parent_offset (-1: none), one per distinct offset.
-  std::vector<int> offset_node(skin.joints.size(), -1);
-  std::vector<std::size_t> offset_owner;  // per offset node, the first joint it holds
-  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
-    const SkinJoint& joint = skin.joints[j];
-    // A joint right under its parent joint reads an offset off the identity by rounding.
-    if (joint.parent_offset.isIdentity(kIdentityTolerance)) continue;
-    for (std::size_t k = 0; k < offset_owner.size(); ++k) {
-      const SkinJoint& other = skin.joints[offset_owner[k]];
-      if (other.parent == joint.parent && other.parent_offset == joint.parent_offset &&
-          other.parent_offset_name == joint.parent_offset_name)
-        offset_node[j] = first + count + static_cast<int>(k);
-    }
-    if (offset_node[j] >= 0) continue;
-    offset_node[j] = first + count + static_cast<int>(offset_owner.size());
-    offset_owner.push_back(j);
-  }
+  const ArmatureNodes armature =
+      plan_armature_nodes(skin, first + static_cast<int>(skin.joints.size()));
+  const std::vector<int>& offset_node = armature.of_joint;
   for (std::size_t j = 0; j < skin.joints.size(); ++j) {
     const SkinJoint& joint = skin.joints[j];
     tinygltf::Node node;
@@ -355,7 +367,7 @@ void add_skin(const SkinBinding& skin, GlbBuilder& glb, std::vector<int>& scene_
     if (joint.parent < 0 && offset_node[j] < 0) scene_roots.push_back(first + static_cast<int>(j));
     out.joints.push_back(first + static_cast<int>(j));
   }
-  for (const std::size_t j : offset_owner) {
+  for (const std::size_t j : armature.owners) {
     const SkinJoint& joint = skin.joints[j];
     tinygltf::Node node;
     node.name = joint.parent_offset_name;
