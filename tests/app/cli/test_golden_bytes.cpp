@@ -41,14 +41,16 @@ void record_digest(const std::string& scene, const std::string& digest) {
   for (const auto& [name, value] : digests) out << name << ' ' << value << '\n';
 }
 
-/// Retargets with `args` (without --out) and checks garment.obj's digest.
-void check_golden(const std::string& scene, std::vector<std::string> args) {
+/// Retargets with `args` (without --out) and checks the digest of the garment written
+/// (`written`, in the output folder).
+void check_golden(const std::string& scene, std::vector<std::string> args,
+                  const std::string& written = "garment.obj") {
   const fs::path out = gr::test::fresh_temp_dir("golden_" + scene);
   args.insert(args.end(), {"--quiet", "--out", out.string()});
   const gr::test::CliRun run = gr::test::run_cli(args, "golden_" + scene);
   INFO(scene << ": " << run.err);
   REQUIRE(run.exit_code == 0);
-  const std::string digest = gr::sha256_of_file((out / "garment.obj").string());
+  const std::string digest = gr::sha256_of_file((out / written).string());
   if (std::getenv("GR_UPDATE_GOLDEN")) record_digest(scene, digest);
   const std::map<std::string, std::string> digests = recorded_digests();
   const auto recorded = digests.find(scene);
@@ -95,4 +97,14 @@ TEST_CASE("golden bytes: skeleton-free family scenes", "[cli][golden]") {
     check_golden(name, {"retarget", "--garment", (dir / "garment.obj").string(), "--avatar",
                         (dir / "avatar.obj").string()});
   }
+}
+
+TEST_CASE("golden bytes: a production GLB garment", "[cli][golden]") {
+  // Skinned glTF in and out: the pose step, the skin written with the avatar's joints.
+  const auto real = [](const std::string& name) { return gr::test::shared_data("real/" + name); };
+  check_golden(
+      "production_trousers_glb",
+      {"retarget", "--garment", real("male-outfit.glb"), "--garment-mesh", "Wolf3D_Outfit_Bottom",
+       "--avatar", real("female-full-body.glb"), "--avatar-mesh", "body.001"},
+      "garment.glb");
 }
