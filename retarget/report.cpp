@@ -171,6 +171,12 @@ nlohmann::json to_json(const RetargetReport& r) {
         {"fit_faces", r.fit.fit_faces},
         {"avatar_faces_total", r.normalize.avatar_faces_total},
         {"avatar_faces_modelled", r.fit.avatar_faces_modelled}}},
+      {"avatar_coverage",
+       {{"uncovered_share", r.normalize.uncovered_share},
+        {"uncovered_bones", r.normalize.uncovered_bones},
+        {"meaning",
+         "share of the garment's area nearest bones (skeletons only) around which the avatar "
+         "has less than 5% of the garment's area there: a part the avatar lacks"}}},
       {"inferred", to_json(r.inferred)},
       {"peak_memory_mb", r.peak_memory_mb},
       {"estimated_memory_mb", r.estimated_memory_mb},

@@ -68,6 +68,10 @@ struct NormalizeReport {
   int garment_vertices = 0;
   int garment_faces = 0;
   int avatar_faces_total = 0;
+  /// Share of the garment's area around bones the avatar has almost no surface around
+  /// (measure_avatar_coverage), and those bones, most garment area first; skeletons only.
+  double uncovered_share = 0.0;
+  std::vector<std::string> uncovered_bones;
 };
 
 /// Shrink: the shrunk avatar the inflation starts from.

@@ -103,24 +103,29 @@ MatchedSkeletons match_skin_skeletons(const SkinBinding& source, const SkinBindi
   return matched;
 }
 
+std::pair<Eigen::Index, double> nearest_bone(const Skeleton& skeleton, const Vector3d& point) {
+  std::pair<Eigen::Index, double> nearest{0, 0.0};
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index b = 0; b < skeleton.bones.rows(); ++b) {
+    const Vector3d a = skeleton.joints.row(skeleton.bones(b, 0)).transpose();
+    const Vector3d d = skeleton.joints.row(skeleton.bones(b, 1)).transpose() - a;
+    const double s =
+        d.squaredNorm() > 0.0 ? std::clamp((point - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double distance_sq = (a + s * d - point).squaredNorm();
+    if (distance_sq >= best) continue;
+    best = distance_sq;
+    nearest = {b, s};
+  }
+  return nearest;
+}
+
 Eigen::MatrixXd nearest_bone_weights(const Skeleton& skeleton,
                                      const Eigen::Ref<const MatrixX3d>& points) {
   Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(skeleton.joints.rows(), points.rows());
   for (Eigen::Index v = 0; v < points.rows(); ++v) {
-    const Vector3d p = points.row(v).transpose();
-    double best = std::numeric_limits<double>::infinity();
-    for (Eigen::Index b = 0; b < skeleton.bones.rows(); ++b) {
-      const Vector3d a = skeleton.joints.row(skeleton.bones(b, 0)).transpose();
-      const Vector3d d = skeleton.joints.row(skeleton.bones(b, 1)).transpose() - a;
-      const double s =
-          d.squaredNorm() > 0.0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      const double distance_sq = (a + s * d - p).squaredNorm();
-      if (distance_sq >= best) continue;
-      best = distance_sq;
-      weights.col(v).setZero();
-      weights(skeleton.bones(b, 0), v) += 1.0 - s;
-      weights(skeleton.bones(b, 1), v) += s;
-    }
+    const auto [bone, s] = nearest_bone(skeleton, points.row(v).transpose());
+    weights(skeleton.bones(bone, 0), v) += 1.0 - s;
+    weights(skeleton.bones(bone, 1), v) += s;
   }
   return weights;
 }

@@ -41,6 +41,11 @@ MatchedSkeletons match_skin_skeletons(const SkinBinding& source, const SkinBindi
 /// @pre weights is empty or has skeleton.joints.rows() rows.
 SkinBinding skin_of_skeleton(const Skeleton& skeleton, const Eigen::MatrixXd& weights);
 
+/// The bone (segment) nearest `point`, and where along it its closest point lies (0 at
+/// bones(b, 0), 1 at bones(b, 1)); the first of equally near bones.
+/// @pre the skeleton has at least one bone.
+std::pair<Eigen::Index, double> nearest_bone(const Skeleton& skeleton, const Vector3d& point);
+
 /// The default binding of points to a skeleton: each point to its nearest bone (segment),
 /// shared between the bone's two joints by where its closest point lies along the bone
 /// (1 - s and s). A zero-length bone counts as its first joint.

@@ -4,13 +4,16 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "core/common/errors.hpp"
 #include "core/mesh/pieces.hpp"
 #include "garment/layers/layer_order.hpp"
 #include "garment/repairs/non_manifold_edges.hpp"
 #include "garment/repairs/untangle.hpp"
+#include "retarget/scene/avatar_coverage.hpp"
 #include "validate/checks/self_intersections.hpp"
 #include "validate/measure/shape_change.hpp"
 
@@ -273,6 +276,34 @@ NormalizedScene normalize(const Scene& scene, double thinnest_barrier,
   return normalized;
 }
 
+/// Where the avatar lacks the surface under the garment (measure_avatar_coverage): refused
+/// beyond kMaxUncoveredShare of the garment, a warning (returned) beyond kUncoveredWarning.
+std::optional<std::string> check_avatar_coverage(const Scene& scene,
+                                                 const NormalizedScene& normalized,
+                                                 NormalizeReport& report) {
+  constexpr double kMaxUncoveredShare = 0.5;
+  constexpr double kUncoveredWarning = 0.1;
+  const AvatarCoverage coverage = measure_avatar_coverage(normalized);
+  report.uncovered_share = coverage.uncovered_share;
+  for (const int bone : coverage.uncovered_bones)
+    report.uncovered_bones.push_back(
+        bone_name(*normalized.target_skeleton, scene.joint_names, bone));
+  if (coverage.uncovered_share <= kUncoveredWarning) return std::nullopt;
+  constexpr std::size_t kBonesNamed = 3;
+  const std::size_t named = std::min(kBonesNamed, report.uncovered_bones.size());
+  const std::string where = fmt::format(
+      "{:.0f}% of the garment's area lies around bones the avatar has almost no surface around "
+      "({}{}): a body cut away under its own clothes, or the mesh of that part not read "
+      "(--avatar-mesh)",
+      100.0 * coverage.uncovered_share,
+      fmt::join(report.uncovered_bones.begin(), report.uncovered_bones.begin() + named, ", "),
+      report.uncovered_bones.size() > named ? ", ..." : "");
+  if (coverage.uncovered_share > kMaxUncoveredShare)
+    throw InputError(scene.avatar_document.source_path, 0,
+                     where + "; nothing there to fit the garment to");
+  return where + "; the fit has nothing there to rest the garment on";
+}
+
 }  // namespace
 
 PrepareOutput run_prepare(const PrepareInput& input, const PrepareOptions& options,
@@ -284,9 +315,10 @@ PrepareOutput run_prepare(const PrepareInput& input, const PrepareOptions& optio
   for (const Repair repair : kRepairsAsRead) repair(repairing);
   out.normalized = normalize(scene, options.thinnest_barrier, repairing.crossing_pairs);
   const NormalizedScene& normalized = out.normalized;
+  NormalizeReport& report = out.report;
+  const std::optional<std::string> lacking = check_avatar_coverage(scene, normalized, report);
   for (const Repair repair : kRepairsNormalized) repair(repairing);
 
-  NormalizeReport& report = out.report;
   report.scene_scale = normalized.normalization.avatar_to_scene.scale;
   report.lattice = normalized.lattice;
   // The solver sees the avatar rounded to the lattice, the certificate the avatar as given.
@@ -297,6 +329,7 @@ PrepareOutput run_prepare(const PrepareInput& input, const PrepareOptions& optio
   // Progress starts once the inputs are known good, so bad input prints its error alone.
   progress.log("read", "{} on {}", input.paths.garment, input.paths.avatar);
   for (const auto& warning : scene.warnings) progress.warn(warning);
+  if (lacking) progress.warn(*lacking);
   const UntangleReport& untangled = out.repairs.untangle;
   if (untangled.pairs > 0)
     progress.log("untangle",

@@ -53,7 +53,6 @@ nlohmann::json read_json(const fs::path& path) {
   return nlohmann::json::parse(in);
 }
 
-/// One error line, naming `text`.
 /// Copies the OBJ `from` to `to` with each vertex position changed by `move`.
 void write_moved_copy(const std::string& from, const fs::path& to,
                       const std::function<void(Eigen::Vector3d&)>& move) {
@@ -70,12 +69,23 @@ void write_moved_copy(const std::string& from, const fs::path& to,
   }
 }
 
+/// One error line, naming `text`.
 void check_one_error_line(const CliRun& run, const std::string& text) {
   CAPTURE(run.err);
   const auto lines = gr::test::lines_of(run.err);
   REQUIRE(lines.size() == 1);
   CHECK(lines.front().rfind("garment-retarget: error: ", 0) == 0);
   CHECK(lines.front().find(text) != std::string::npos);
+}
+
+/// Runs `args` and checks that they were refused as bad input: exit 2, one error line
+/// naming `text`, and no folder at `out`.
+void check_refused(const std::vector<std::string>& args, const fs::path& out,
+                   const std::string& text) {
+  const CliRun run = gr::test::run_cli(args, out.parent_path().filename().string());
+  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
+  check_one_error_line(run, text);
+  CHECK_FALSE(fs::exists(out));
 }
 
 /// Runs the CLI and returns it with its wall time in seconds.
@@ -225,10 +235,7 @@ TEST_CASE("A garment beside the avatar with no skeleton to place it is named, no
   write_moved_copy(bundled("garment.obj"), garment, [](Eigen::Vector3d& v) { v.x() += 4.0; });
   std::vector<std::string> args = bundled_retarget(root / "out");
   args[2] = garment.string();
-  const CliRun run = gr::test::run_cli(args, "garment_beside_avatar");
-  CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
-  check_one_error_line(run, "lies further from the avatar's bounding box");
-  CHECK_FALSE(fs::exists(root / "out"));
+  check_refused(args, root / "out", "lies further from the avatar's bounding box");
 }
 
 TEST_CASE("Garment and avatar sizes far apart are named, not retargeted", "[cli][limits]") {
@@ -239,9 +246,33 @@ TEST_CASE("Garment and avatar sizes far apart are named, not retargeted", "[cli]
     write_moved_copy(bundled("avatar.obj"), avatar, [&](Eigen::Vector3d& v) { v *= scale; });
     std::vector<std::string> args = bundled_retarget(root / "out");
     args[4] = avatar.string();
-    const CliRun run = gr::test::run_cli(args, "extreme_sizes");
-    CHECK(run.exit_code == gr::to_exit_code(gr::Outcome::kBadInput));
-    check_one_error_line(run, "times the avatar's size");
-    CHECK_FALSE(fs::exists(root / "out"));
+    check_refused(args, root / "out", "times the avatar's size");
   }
+}
+
+TEST_CASE("An avatar without the part under the garment is named, not retargeted",
+          "[cli][limits]") {
+  // The hair onto a body read without its head: nothing there to fit it to.
+  const fs::path root = gr::test::fresh_temp_dir("avatar_without_head");
+  const std::string hair = gr::test::shared_data("real/female-pose-standing.glb");
+  const std::string avatar = gr::test::shared_data("real/female-full-body.glb");
+  std::vector<std::string> args = {"retarget",
+                                   "--garment",
+                                   hair,
+                                   "--garment-mesh",
+                                   "Wolf3D_Hair.002",
+                                   "--avatar",
+                                   avatar,
+                                   "--avatar-mesh",
+                                   "body.001",
+                                   "--out",
+                                   (root / "out").string(),
+                                   "--quiet"};
+  check_refused(args, root / "out", "100% of the garment's area lies around bones the avatar has");
+  // With its head, the hair is retargeted.
+  args.insert(args.end(), {"--avatar-mesh", "head", "--quality", "fast"});
+  const CliRun run = gr::test::run_cli(args, "avatar_with_head");
+  CHECK(run.exit_code == 0);
+  const nlohmann::json coverage = read_json(root / "out" / "report.json")["avatar_coverage"];
+  CHECK(coverage["uncovered_share"].get<double>() < 0.1);
 }
