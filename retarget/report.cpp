@@ -4,6 +4,10 @@
 
 #include <sys/resource.h>
 
+#include <fmt/format.h>
+
+#include "retarget/scene/avatar_coverage.hpp"
+
 namespace gr {
 
 namespace {
@@ -175,8 +179,10 @@ nlohmann::json to_json(const RetargetReport& r) {
        {{"uncovered_share", r.normalize.uncovered_share},
         {"uncovered_bones", r.normalize.uncovered_bones},
         {"meaning",
-         "share of the garment's area nearest bones (skeletons only) around which the avatar "
-         "has less than 5% of the garment's area there: a part the avatar lacks"}}},
+         fmt::format("share of the garment's area nearest bones (skeletons only) around which "
+                     "the avatar has less than {:g}% of the garment's area there: a part the "
+                     "avatar lacks",
+                     100.0 * kMinAvatarToGarmentArea)}}},
       {"inferred", to_json(r.inferred)},
       {"peak_memory_mb", r.peak_memory_mb},
       {"estimated_memory_mb", r.estimated_memory_mb},

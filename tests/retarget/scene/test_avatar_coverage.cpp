@@ -28,7 +28,8 @@ NormalizedScene sleeve_on(const TriangleMesh& avatar) {
 TEST_CASE("a sleeve over two bones on an arm that has only the first lacks the second's surface",
           "[coverage]") {
   SECTION("the arm has both bones") {
-    const AvatarCoverage coverage = measure_avatar_coverage(sleeve_on(open_cylinder(0.1, 0.0, 2.0, 21, 12)));
+    const AvatarCoverage coverage =
+        measure_avatar_coverage(sleeve_on(open_cylinder(0.1, 0.0, 2.0, 21, 12)));
     REQUIRE(coverage.garment_area.size() == 2);
     CHECK(coverage.garment_area[0] > 0.0);
     CHECK(coverage.garment_area[1] > 0.0);
@@ -37,7 +38,8 @@ TEST_CASE("a sleeve over two bones on an arm that has only the first lacks the s
     CHECK(coverage.uncovered_share == 0.0);
   }
   SECTION("the arm is cut at the second joint") {
-    const AvatarCoverage coverage = measure_avatar_coverage(sleeve_on(open_cylinder(0.1, 0.0, 0.95, 11, 12)));
+    const AvatarCoverage coverage =
+        measure_avatar_coverage(sleeve_on(open_cylinder(0.1, 0.0, 0.95, 11, 12)));
     CHECK(coverage.avatar_area[1] == 0.0);
     REQUIRE(coverage.uncovered_bones == std::vector<int>{1});
     // The sleeve's upper half: its faces whose centroids lie above the second joint.
