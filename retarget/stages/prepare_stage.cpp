@@ -281,7 +281,7 @@ NormalizedScene normalize(const Scene& scene, double thinnest_barrier,
 std::optional<std::string> check_avatar_coverage(const Scene& scene,
                                                  const NormalizedScene& normalized,
                                                  NormalizeReport& report) {
-  constexpr double kMaxUncoveredShare = 0.5;
+  constexpr double kMaxUncoveredShare = 0.8;
   constexpr double kUncoveredWarning = 0.1;
   const AvatarCoverage coverage = measure_avatar_coverage(normalized);
   report.uncovered_share = coverage.uncovered_share;
