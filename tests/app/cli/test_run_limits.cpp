@@ -276,3 +276,27 @@ TEST_CASE("An avatar without the part under the garment is named, not retargeted
   const nlohmann::json coverage = read_json(root / "out" / "report.json")["avatar_coverage"];
   CHECK(coverage["uncovered_share"].get<double>() < 0.1);
 }
+
+TEST_CASE("An avatar cut away under part of the garment is warned of, and retargeted",
+          "[cli][limits]") {
+  // The trousers onto a body cut away under its own dress, at the hips.
+  const fs::path out = gr::test::fresh_temp_dir("avatar_cut_at_hips") / "out";
+  const CliRun run = gr::test::run_cli(
+      {"retarget", "--garment", gr::test::shared_data("real/male-outfit.glb"), "--garment-mesh",
+       "Wolf3D_Outfit_Bottom", "--avatar", gr::test::shared_data("real/female-pose-standing.glb"),
+       "--avatar-mesh", "Wolf3D_Body.002", "--out", out.string(), "--quality", "fast", "--quiet"},
+      "avatar_cut_at_hips");
+  CHECK(run.exit_code == 0);
+  const nlohmann::json report = read_json(out / "report.json");
+  const double share = report["avatar_coverage"]["uncovered_share"].get<double>();
+  CHECK(share > 0.1);
+  CHECK(share < 0.8);
+  const auto bones = report["avatar_coverage"]["uncovered_bones"].get<std::vector<std::string>>();
+  REQUIRE_FALSE(bones.empty());
+  CHECK(bones.front().rfind("Hips-", 0) == 0);
+  bool warned = false;
+  for (const std::string& warning : report["warnings"].get<std::vector<std::string>>())
+    warned = warned || warning.find("lies around bones the avatar has almost no surface around (" +
+                                    bones.front()) != std::string::npos;
+  CHECK(warned);
+}
