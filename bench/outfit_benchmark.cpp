@@ -54,9 +54,11 @@ std::vector<OutfitScene> scenes() {
     if (!skin.empty()) target.skin_weights = shared("avatars/" + avatar + "/" + skin);
     return target;
   };
-  const std::string outfit = shared("real/male-outfit.glb");
-  const auto real = [&](const std::string& label, const std::string& mesh) {
-    return Garment{label, {outfit, mesh, "", "", outfit}, mesh, false};
+  // A garment of a production file, its body (the file's other meshes) as the source body.
+  const auto real = [&](const std::string& file, const std::string& label,
+                        const std::string& mesh) {
+    const std::string path = shared("real/" + file);
+    return Garment{label, {path, mesh, "", "", path}, mesh, false};
   };
   gr::ScenePaths female;
   female.avatar = shared("real/female-full-body.glb");
@@ -69,8 +71,14 @@ std::vector<OutfitScene> scenes() {
        {research_garment("skirt"), research_garment("puffer")},
        research("goblin", "skin.txt")},
       {"male_outfit_female",
-       {real("shirt", "Wolf3D_Outfit_Top"), real("trousers", "Wolf3D_Outfit_Bottom"),
-        real("footwear", "Wolf3D_Outfit_Footwear")},
+       {real("male-outfit.glb", "shirt", "Wolf3D_Outfit_Top"),
+        real("male-outfit.glb", "trousers", "Wolf3D_Outfit_Bottom"),
+        real("male-outfit.glb", "footwear", "Wolf3D_Outfit_Footwear")},
+       female},
+      {"puffer_outfit_female",
+       {real("male-pose-standing.glb", "puffer", "Wolf3D_Outfit_Top.001"),
+        real("male-pose-standing.glb", "trousers", "Wolf3D_Outfit_Bottom.001"),
+        real("male-pose-standing.glb", "footwear", "Wolf3D_Outfit_Footwear.001")},
        female},
   };
 }
