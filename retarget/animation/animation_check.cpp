@@ -9,6 +9,7 @@
 #include "core/common/errors.hpp"
 #include "core/common/stopwatch.hpp"
 #include "core/io/formats/mesh_formats.hpp"
+#include "retarget/scene/normalization.hpp"
 #include "validate/checks/mesh_intersections.hpp"
 #include "validate/checks/self_intersections.hpp"
 
@@ -223,9 +224,7 @@ ClipFindings check_clip(const AnimatedScene& scene, const ChosenClip& chosen, do
   }
   const std::vector<double> times = frame_times(clip, fps);
   findings.frames.resize(times.size());
-  const MatrixX3d& avatar_rest = scene.avatar.mesh.vertices;
-  const double avatar_size =
-      (avatar_rest.colwise().maxCoeff() - avatar_rest.colwise().minCoeff()).maxCoeff();
+  const double avatar_size = largest_side(scene.avatar.mesh.vertices);
   findings.drift_limit = kMaxJointDrift * avatar_size;
   const std::vector<std::vector<std::pair<int, int>>> same_joints =
       joints_at_rest_together(scene, kSameJointAtRest * avatar_size);

@@ -78,12 +78,11 @@ MatrixX3d to_lattice(const Similarity& similarity, const Eigen::Ref<const Matrix
   return mapped;
 }
 
-/// The largest side of the bounding box of `points`.
+}  // namespace
+
 double largest_side(const Eigen::Ref<const MatrixX3d>& points) {
   return (points.colwise().maxCoeff() - points.colwise().minCoeff()).maxCoeff();
 }
-
-}  // namespace
 
 void require_comparable_sizes(const Scene& scene, const NormalizedScene& normalized) {
   const double ratio =

@@ -66,6 +66,9 @@ struct NormalizedScene {
 /// rounded to multiples of `lattice` (a power of two; 0 keeps the mapped coordinates).
 NormalizedScene make_normalized_scene(const Scene& scene, double lattice = 0.0);
 
+/// The largest side of the bounding box of `points`: a mesh's size.
+double largest_side(const Eigen::Ref<const MatrixX3d>& points);
+
 /// Garment-to-avatar size ratios (largest bounding-box sides, placed on the avatar) the
 /// pipeline retargets: a garment a hundredth of the avatar spans about ten barrier supports,
 /// and one a hundred times its size covers nothing of it.
