@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/mesh/boundary_loops.hpp"
+#include "core/skeleton/skin_matching.hpp"
 #include "garment/layers/surface_rays.hpp"
 #include "shrink/level_set/triangle_tree.hpp"
 
@@ -33,10 +35,42 @@ std::vector<int> ranks_of(const std::vector<int>& order, int layer_count, const 
   return rank;
 }
 
+/// Per bone, the bones at most `hops` apart from it (sharing a joint: one apart), as a
+/// bones × bones table of flags.
+std::vector<char> bones_within(const Skeleton& skeleton, int hops) {
+  const auto count = static_cast<std::size_t>(skeleton.bones.rows());
+  std::vector<std::vector<std::size_t>> at_joint(static_cast<std::size_t>(skeleton.joints.rows()));
+  for (std::size_t b = 0; b < count; ++b)
+    for (int end = 0; end < 2; ++end)
+      at_joint[static_cast<std::size_t>(skeleton.bones(static_cast<Eigen::Index>(b), end))]
+          .push_back(b);
+  std::vector<char> near(count * count, 0);
+  for (std::size_t from = 0; from < count; ++from) {
+    std::vector<std::size_t> reached{from};
+    near[from * count + from] = 1;
+    for (int hop = 0; hop < hops; ++hop) {
+      std::vector<std::size_t> next;
+      for (const std::size_t b : reached)
+        for (int end = 0; end < 2; ++end)
+          for (const std::size_t other : at_joint[static_cast<std::size_t>(
+                   skeleton.bones(static_cast<Eigen::Index>(b), end))])
+            if (!near[from * count + other]) {
+              near[from * count + other] = 1;
+              next.push_back(other);
+            }
+      reached = std::move(next);
+    }
+  }
+  return near;
+}
+
 /// Each layer's first hit on one ray, by distance then layer (see measure_layer_order).
+/// @param elsewhere whether a point on the ray lies around another part of the body than
+///        the ray's own: the ray stops before it.
 std::vector<LayerHit> first_layer_hits(const SurfaceRays& garments, const SurfaceRays& body,
                                        const std::vector<int>& face_layer, int layer_count,
-                                       const Vector3d& origin, const Vector3d& direction) {
+                                       const Vector3d& origin, const Vector3d& direction,
+                                       const std::function<bool(const Vector3d&)>& elsewhere) {
   const std::vector<RayHit> hits = garments.hits(origin, direction);
   if (hits.empty()) return {};
   const double first = hits.front().distance;
@@ -49,7 +83,7 @@ std::vector<LayerHit> first_layer_hits(const SurfaceRays& garments, const Surfac
   std::vector<char> seen(static_cast<std::size_t>(layer_count), 0);
   std::vector<LayerHit> out;
   for (const RayHit& hit : hits) {
-    if (hit.distance >= stop) break;
+    if (hit.distance >= stop || (elsewhere && elsewhere(origin + hit.distance * direction))) break;
     const int layer = face_layer[static_cast<std::size_t>(hit.face)];
     if (seen[static_cast<std::size_t>(layer)]) continue;
     seen[static_cast<std::size_t>(layer)] = 1;
@@ -168,7 +202,8 @@ BodyRays rays_from_skeleton(const Skeleton& skeleton, const BodyRayOptions& opti
     if (skeleton.joints.row(skeleton.bones(b, 0)) != skeleton.joints.row(skeleton.bones(b, 1)))
       bones.push_back(b);
   const auto rows = static_cast<Eigen::Index>(bones.size()) * samples * around;
-  BodyRays out{MatrixX3d(rows, 3), MatrixX3d(rows, 3)};
+  BodyRays out{MatrixX3d(rows, 3), MatrixX3d(rows, 3), skeleton, {}};
+  out.bone.reserve(static_cast<std::size_t>(rows));
   Eigen::Index row = 0;
   for (const Eigen::Index b : bones) {
     const Vector3d a = skeleton.joints.row(skeleton.bones(b, 0)).transpose();
@@ -180,6 +215,7 @@ BodyRays rays_from_skeleton(const Skeleton& skeleton, const BodyRayOptions& opti
         const double angle = 2.0 * M_PI * k / around;
         out.origins.row(row) = origin.transpose();
         out.directions.row(row) = (std::cos(angle) * u + std::sin(angle) * v).transpose();
+        out.bone.push_back(static_cast<int>(b));
       }
     }
   }
@@ -223,13 +259,30 @@ LayerOrderMeasure measure_layer_order(const LayeredOutfit& outfit, const Triangl
   if (rays.origins.rows() != rays.directions.rows())
     throw std::invalid_argument("measure_layer_order: as many ray directions as origins");
 
+  const bool from_bones = rays.skeleton && rays.skeleton->bones.rows() > 0;
+  if (from_bones && (static_cast<Eigen::Index>(rays.bone.size()) != rays.origins.rows() ||
+                     std::any_of(rays.bone.begin(), rays.bone.end(),
+                                 [&](int b) { return b < 0 || b >= rays.skeleton->bones.rows(); })))
+    throw std::invalid_argument("measure_layer_order: one bone of the skeleton per ray");
+  const std::vector<char> near =
+      from_bones ? bones_within(*rays.skeleton, kRayBoneHops) : std::vector<char>{};
+  const auto bone_count = from_bones ? static_cast<std::size_t>(rays.skeleton->bones.rows()) : 0;
+
   const SurfaceRays garments(outfit.surface), body_rays(body);
   const Eigen::Index count = rays.origins.rows();
   std::vector<std::vector<LayerHit>> per_ray(static_cast<std::size_t>(count));
   tbb::parallel_for(Eigen::Index(0), count, [&](Eigen::Index r) {
-    per_ray[static_cast<std::size_t>(r)] =
-        first_layer_hits(garments, body_rays, outfit.face_layer, layers,
-                         rays.origins.row(r).transpose(), rays.directions.row(r).transpose());
+    std::function<bool(const Vector3d&)> elsewhere;
+    if (from_bones) {
+      const auto own = static_cast<std::size_t>(rays.bone[static_cast<std::size_t>(r)]);
+      elsewhere = [&, own](const Vector3d& point) {
+        const auto nearest = static_cast<std::size_t>(nearest_bone(*rays.skeleton, point).first);
+        return !near[own * bone_count + nearest];
+      };
+    }
+    per_ray[static_cast<std::size_t>(r)] = first_layer_hits(
+        garments, body_rays, outfit.face_layer, layers, rays.origins.row(r).transpose(),
+        rays.directions.row(r).transpose(), elsewhere);
   });
 
   LayerOrderMeasure out;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/common/types.hpp"
@@ -22,6 +23,10 @@ LayeredOutfit merge_layers(const std::vector<TriangleMesh>& garments);
 struct BodyRays {
   MatrixX3d origins;     ///< #R×3, the body's units
   MatrixX3d directions;  ///< #R×3, unit length
+  /// Rays cast from a skeleton's bones: the skeleton, and per ray the bone it leaves from
+  /// (rows of skeleton.bones). Empty for rays from a body's faces.
+  std::optional<Skeleton> skeleton;
+  std::vector<int> bone;
 };
 
 /// How many rays to cast and from where.
@@ -41,7 +46,7 @@ struct BodyRayOptions {
 /// and from each, `directions_per_sample` directions cos θ·u + sin θ·v at
 /// θ = 2πk / directions_per_sample, with u = unit_perpendicular(b − a) (surface_rays.hpp)
 /// and v = (b − a)/|b − a| × u. Rows bone by bone, point by point, direction by
-/// direction; a zero-length bone gives none.
+/// direction; a zero-length bone gives none. Each ray keeps its bone (BodyRays::bone).
 /// @throw std::invalid_argument when samples_per_bone or directions_per_sample is below 1.
 BodyRays rays_from_skeleton(const Skeleton& skeleton, const BodyRayOptions& options = {});
 
@@ -77,16 +82,24 @@ struct LayerOrderMeasure {
   std::vector<RayLayers> several;  ///< the rays meeting two or more layers, by ray
 };
 
+/// How many bones a garment hit's nearest bone may lie from the bone of the ray that meets
+/// it (see measure_layer_order): two, so that a hit around the next bone or the one after
+/// it counts (a collar around the neck met by the shoulder's rays).
+inline constexpr int kRayBoneHops = 2;
+
 /// Casts `rays` against the outfit and the body (both in the rays' frame). On each ray,
 /// only the garment hits from the first one on count, and with a body only those strictly
 /// before the first body hit beyond that first garment hit: a ray from the forearm that
 /// passes the sleeve and then enters the torso stops there, and the torso's layers behind
 /// it do not count. Body hits before the first garment hit (the ray leaving the body) do
-/// not stop it. An empty `body` (no face) stops nothing. The same counts for any number of
-/// threads.
+/// not stop it. An empty `body` (no face) stops nothing. A ray from a bone also stops
+/// before the first garment hit whose nearest bone lies more than kRayBoneHops bones from
+/// its own (bones sharing a joint are one apart): where the body is cut away under the clothes, the
+/// forearm's ray that passes the sleeve then meets the trousers around the hips, which lie around
+/// another part of the body. The same counts for any number of threads.
 /// @throw std::invalid_argument when face_layer does not hold one layer in
-///        [0, layer_count) per outfit face, or the rays' origins and directions differ in
-///        count.
+///        [0, layer_count) per outfit face, the rays' origins and directions differ in
+///        count, or rays from a skeleton do not each name one of its bones.
 LayerOrderMeasure measure_layer_order(const LayeredOutfit& outfit, const TriangleMesh& body,
                                       const BodyRays& rays);
 

@@ -173,17 +173,56 @@ TEST_CASE("A ray from the forearm stops where it enters the torso", "[outfit][la
     CHECK(layer_order_from_votes(with_body.before, {2, 1, 0}) == std::vector<int>{0, 1, 2});
     CHECK(rays_out_of_order(with_body, {0, 1, 2}).out_of_order == 0);
 
-    // Without the body, the forearm's rays toward the torso (8 points, 3 directions) see
-    // the sleeve, then the shirt behind the torso: the jacket seems inside the shirt.
+    // Without the body (cut away under the clothes), the forearm's rays toward the torso
+    // (8 points, 3 directions) pass the sleeve, then would meet the shirt behind the torso:
+    // they stop there, since the shirt lies around the torso's bone, not the forearm's.
     const LayerOrderMeasure without_body = measure_layer_order(outfit, TriangleMesh{}, rays);
-    CHECK(without_body.before(1, 0) == 24);
+    CHECK(without_body.before(1, 0) == 0);
     CHECK(without_body.before(0, 1) == 30);
-    const OutOfOrderRays wrong = rays_out_of_order(without_body, {0, 1, 2});
+    CHECK(rays_out_of_order(without_body, {0, 1, 2}).out_of_order == 0);
+
+    // The same rays without their bones do not stop: the jacket seems inside the shirt.
+    BodyRays unbound = rays;
+    unbound.skeleton.reset();
+    unbound.bone.clear();
+    const LayerOrderMeasure unstopped = measure_layer_order(outfit, TriangleMesh{}, unbound);
+    CHECK(unstopped.before(1, 0) == 24);
+    const OutOfOrderRays wrong = rays_out_of_order(unstopped, {0, 1, 2});
     CHECK(wrong.out_of_order == 24);
     REQUIRE_FALSE(wrong.examples.empty());
     CHECK(wrong.examples.front().outer_layer == 1);
     CHECK(wrong.examples.front().inner_layer == 0);
     CHECK(wrong.examples.front().origin.x() == Approx(1.6));
+  }
+
+  SECTION("a hit around a bone two joints away still counts, three away does not") {
+    // One ray from a forearm bone through the sleeve toward the shirt panel, the forearm
+    // the first bone of a chain; the shirt lies nearest the chain's last bone.
+    const Vector3d hand(1.6, 0, -2), elbow(1.6, 0, -1), shoulder(1.6, 0, 0);
+    const auto measure_with = [&](const std::vector<std::array<Vector3d, 2>>& bones) {
+      Skeleton chain = skeleton_of(bones);
+      // Bone k's end is bone k+1's start: one joint each.
+      for (Eigen::Index b = 1; b < chain.bones.rows(); ++b)
+        chain.bones(b, 0) = chain.bones(b - 1, 1);
+      BodyRays rays = one_ray(Vector3d(1.6, 0, -1.5), Vector3d(-1, 0, 0));
+      rays.skeleton = chain;
+      rays.bone = {0};
+      return measure_layer_order(outfit, TriangleMesh{}, rays);
+    };
+    // Forearm, upper arm, a bone to the neck, the torso: the shirt's bone is three away.
+    CHECK(measure_with({{hand, elbow},
+                        {elbow, shoulder},
+                        {shoulder, Vector3d(0, 0, 3)},
+                        {Vector3d(0, 0, 3), Vector3d(0, 0, -3)}})
+              .before(1, 0) == 0);
+    // Forearm, upper arm, a bone down to the hip: the shirt's bone is two away.
+    CHECK(measure_with({{hand, elbow}, {elbow, shoulder}, {shoulder, Vector3d(0, 0, -3)}})
+              .before(1, 0) == 1);
+
+    BodyRays stray = one_ray(Vector3d(1.6, 0, -1.5), Vector3d(-1, 0, 0));
+    stray.skeleton = skeleton_of({{hand, elbow}});
+    stray.bone = {1};
+    CHECK_THROWS_AS(measure_layer_order(outfit, TriangleMesh{}, stray), std::invalid_argument);
   }
 }
 
