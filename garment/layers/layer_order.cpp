@@ -237,7 +237,7 @@ BodyRays rays_from_body_faces(const TriangleMesh& body, const BodyRayOptions& op
           ? options.face_offset *
                 (body.vertices.colwise().maxCoeff() - body.vertices.colwise().minCoeff()).norm()
           : 0.0;
-  BodyRays out{MatrixX3d(count, 3), MatrixX3d(count, 3)};
+  BodyRays out{MatrixX3d(count, 3), MatrixX3d(count, 3), std::nullopt, {}};
   for (long long i = 0; i < count; ++i) {
     const Eigen::Index f = faces[static_cast<std::size_t>(i * n / count)];
     out.directions.row(i) = frames.normals.row(f);

@@ -30,7 +30,7 @@ Skeleton skeleton_of(const std::vector<std::array<Vector3d, 2>>& bones) {
 }
 
 BodyRays one_ray(const Vector3d& origin, const Vector3d& direction) {
-  return {origin.transpose(), direction.normalized().transpose()};
+  return {origin.transpose(), direction.normalized().transpose(), std::nullopt, {}};
 }
 
 }  // namespace
