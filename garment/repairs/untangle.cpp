@@ -224,13 +224,11 @@ bool pair_less(const FacePair& a, const FacePair& b) {
 }
 
 /// The crossing pairs of a garment, kept up to date as its vertices move: per face, the
-/// faces it crosses, and per face its box at the current positions.
+/// faces it crosses, and per face its box at the current positions, filed in a grid of cells
+/// about twice the mean face's size.
 class LocalCrossings {
  public:
-  /// `reach`: how far any vertex may move from X, so that a face stays in the grid cells
-  /// its box at X grown by it meets.
-  LocalCrossings(const MatrixX3i& faces, const MatrixX3d& X, const std::vector<FacePair>& pairs,
-                 double reach)
+  LocalCrossings(const MatrixX3i& faces, const MatrixX3d& X, const std::vector<FacePair>& pairs)
       : faces_(faces), partners_(static_cast<std::size_t>(faces.rows())),
         boxes_(static_cast<std::size_t>(faces.rows())) {
     for (const FacePair& p : pairs) add(p);
@@ -240,13 +238,8 @@ class LocalCrossings {
       size += boxes_[static_cast<std::size_t>(f)].sizes().maxCoeff();
     }
     if (faces.rows() > 0) size /= static_cast<double>(faces.rows());
-    cell_ = std::max(2.0 * (size + reach), 1e-12);
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-      Eigen::AlignedBox3d grown = boxes_[static_cast<std::size_t>(f)];
-      grown.min().array() -= reach;
-      grown.max().array() += reach;
-      for_cells(grown, [&](const Cell& c) { grid_[c].push_back(static_cast<int>(f)); });
-    }
+    cell_ = std::max(2.0 * size, 1e-12);
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) file(static_cast<int>(f));
   }
 
   /// The crossing pairs with a face in `region` (sorted, unique).
@@ -270,35 +263,46 @@ class LocalCrossings {
   std::vector<FacePair> crossing_at(const MatrixX3d& X, const std::vector<int>& region) const {
     std::vector<Eigen::AlignedBox3d> moved;
     for (const int f : region) moved.push_back(box(X, f));
-    std::vector<int> nearby = unmoved_near(moved, region);
     // Only pairs with a moved face can have changed: each moved face against the later
-    // moved faces and the nearby ones, in rows of the submesh tested (region first). The
-    // nearby faces sorted by their boxes' low x: a moved box meets only those from its own
-    // low x less the widest nearby box up to its high x.
-    const auto low_x = [&](int g) { return boxes_[static_cast<std::size_t>(g)].min().x(); };
-    std::sort(nearby.begin(), nearby.end(), [&](int a, int b) { return low_x(a) < low_x(b); });
-    double widest = 0.0;
-    for (const int g : nearby)
-      widest = std::max(widest, boxes_[static_cast<std::size_t>(g)].sizes().x());
-    std::vector<int> local = region;
-    std::vector<int> row_of(nearby.size(), -1);
-    std::vector<FacePair> candidates;
+    // moved faces and the unmoved ones filed in the cells its box meets, in rows of the
+    // submesh tested (region first).
+    std::vector<int> row_of(boxes_.size(), -1);
     const auto moved_count = static_cast<int>(region.size());
+    for (int k = 0; k < moved_count; ++k)
+      row_of[static_cast<std::size_t>(region[static_cast<std::size_t>(k)])] = k;
+    std::vector<int> local = region;
+    std::vector<int> met_by(boxes_.size(), -1);  // the last moved face that met each face
+    std::vector<FacePair> candidates;
+    // Moved against moved: swept along x, each box against those starting within it.
+    std::vector<int> by_low_x(static_cast<std::size_t>(moved_count));
+    std::iota(by_low_x.begin(), by_low_x.end(), 0);
+    const auto low_x = [&](int k) { return moved[static_cast<std::size_t>(k)].min().x(); };
+    std::sort(by_low_x.begin(), by_low_x.end(),
+              [&](int a, int b) { return low_x(a) != low_x(b) ? low_x(a) < low_x(b) : a < b; });
+    for (std::size_t i = 0; i < by_low_x.size(); ++i) {
+      const int k = by_low_x[i];
+      const Eigen::AlignedBox3d& b = moved[static_cast<std::size_t>(k)];
+      for (std::size_t n = i + 1; n < by_low_x.size() && low_x(by_low_x[n]) <= b.max().x(); ++n)
+        if (b.intersects(moved[static_cast<std::size_t>(by_low_x[n])]))
+          candidates.push_back({std::min(k, by_low_x[n]), std::max(k, by_low_x[n])});
+    }
     for (int k = 0; k < moved_count; ++k) {
       const Eigen::AlignedBox3d& b = moved[static_cast<std::size_t>(k)];
-      for (int j = k + 1; j < moved_count; ++j)
-        if (b.intersects(moved[static_cast<std::size_t>(j)])) candidates.push_back({k, j});
-      const auto first = std::lower_bound(nearby.begin(), nearby.end(), b.min().x() - widest,
-                                          [&](int g, double x) { return low_x(g) < x; });
-      for (auto n = static_cast<std::size_t>(first - nearby.begin());
-           n < nearby.size() && low_x(nearby[n]) <= b.max().x(); ++n) {
-        if (!b.intersects(boxes_[static_cast<std::size_t>(nearby[n])])) continue;
-        if (row_of[n] < 0) {
-          row_of[n] = static_cast<int>(local.size());
-          local.push_back(nearby[n]);
+      for_cells(b, [&](const Cell& c) {
+        const auto it = grid_.find(c);
+        if (it == grid_.end()) return;
+        for (const int g : it->second) {
+          const auto i = static_cast<std::size_t>(g);
+          if (met_by[i] == k || (row_of[i] >= 0 && row_of[i] < moved_count)) continue;
+          met_by[i] = k;
+          if (!b.intersects(boxes_[i])) continue;
+          if (row_of[i] < 0) {
+            row_of[i] = static_cast<int>(local.size());
+            local.push_back(g);
+          }
+          candidates.push_back({k, row_of[i]});
         }
-        candidates.push_back({k, row_of[n]});
-      }
+      });
     }
     std::vector<FacePair> out;
     for (const FacePair& p : self_intersecting_among(submesh(X, local), candidates).pairs.pairs) {
@@ -315,7 +319,11 @@ class LocalCrossings {
               const std::vector<FacePair>& after) {
     for (const FacePair& p : touching(region)) remove(p);
     for (const FacePair& p : after) add(p);
-    for (const int f : region) boxes_[static_cast<std::size_t>(f)] = box(X, f);
+    for (const int f : region) {
+      unfile(f);
+      boxes_[static_cast<std::size_t>(f)] = box(X, f);
+      file(f);
+    }
   }
 
   bool crosses(const FacePair& p) const {
@@ -337,40 +345,36 @@ class LocalCrossings {
         for (long k = lo[2]; k <= hi[2]; ++k) visit(Cell{i, j, k});
   }
 
-  /// The faces outside `region` whose boxes meet the box of all of `moved` (the region's
-  /// boxes now).
-  std::vector<int> unmoved_near(const std::vector<Eigen::AlignedBox3d>& moved,
-                                const std::vector<int>& region) const {
-    Eigen::AlignedBox3d reach;
-    for (const Eigen::AlignedBox3d& b : moved) reach.extend(b);
-    std::vector<char> skip(boxes_.size(), 0);
-    for (const int f : region) skip[static_cast<std::size_t>(f)] = 1;
-    std::vector<int> nearby;
-    for_cells(reach, [&](const Cell& c) {
-      const auto it = grid_.find(c);
-      if (it == grid_.end()) return;
-      for (const int g : it->second) {
-        const auto k = static_cast<std::size_t>(g);
-        if (skip[k]) continue;
-        skip[k] = 1;
-        if (boxes_[k].intersects(reach)) nearby.push_back(g);
-      }
+  /// Files face f in the cells its box meets, or takes it out of them.
+  void file(int f) {
+    for_cells(boxes_[static_cast<std::size_t>(f)], [&](const Cell& c) { grid_[c].push_back(f); });
+  }
+  void unfile(int f) {
+    for_cells(boxes_[static_cast<std::size_t>(f)], [&](const Cell& c) {
+      std::vector<int>& in = grid_[c];
+      in.erase(std::find(in.begin(), in.end(), f));
     });
-    return nearby;
   }
 
   /// The faces `local` at positions `X`, as a mesh of their own (face k is local[k]).
   TriangleMesh submesh(const MatrixX3d& X, const std::vector<int>& local) const {
-    std::map<int, int> vertex_id;
+    std::vector<int> id_of(static_cast<std::size_t>(X.rows()), -1);
+    std::vector<int> vertices;  // by id: ids in the order the faces first use them
     TriangleMesh sub;
     sub.faces.resize(static_cast<Eigen::Index>(local.size()), 3);
     for (std::size_t k = 0; k < local.size(); ++k)
-      for (int c = 0; c < 3; ++c)
-        sub.faces(static_cast<Eigen::Index>(k), c) =
-            vertex_id.emplace(faces_(local[k], c), static_cast<int>(vertex_id.size()))
-                .first->second;
-    sub.vertices.resize(static_cast<Eigen::Index>(vertex_id.size()), 3);
-    for (const auto& [v, id] : vertex_id) sub.vertices.row(id) = X.row(v);
+      for (int c = 0; c < 3; ++c) {
+        const int v = faces_(local[k], c);
+        int& id = id_of[static_cast<std::size_t>(v)];
+        if (id < 0) {
+          id = static_cast<int>(vertices.size());
+          vertices.push_back(v);
+        }
+        sub.faces(static_cast<Eigen::Index>(k), c) = id;
+      }
+    sub.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+    for (std::size_t id = 0; id < vertices.size(); ++id)
+      sub.vertices.row(static_cast<Eigen::Index>(id)) = X.row(vertices[id]);
     return sub;
   }
 
@@ -394,7 +398,7 @@ class LocalCrossings {
   std::vector<std::vector<int>> partners_;
   std::vector<Eigen::AlignedBox3d> boxes_;
   double cell_ = 1.0;
-  std::map<Cell, std::vector<int>> grid_;  ///< faces by the cells their reach meets
+  std::map<Cell, std::vector<int>> grid_;  ///< faces by the cells their boxes meet
 };
 
 /// How much a set of crossing pairs crosses: how many, and the pushes they need in all.
@@ -470,7 +474,7 @@ Untangled untangle_crossings(const TriangleMesh& garment, const std::vector<Face
     for (int k = 0; k < 3; ++k)
       faces_of[static_cast<std::size_t>(F(f, k))].push_back(static_cast<int>(f));
   const std::vector<std::vector<int>> neighbours = vertex_neighbours(garment);
-  LocalCrossings crossings(F, X, input, options.max_displacement);
+  LocalCrossings crossings(F, X, input);
   std::vector<char> at_budget(n, 0);
   const auto round_to_lattice = [&](Vector3d x) {
     if (options.lattice > 0.0)
