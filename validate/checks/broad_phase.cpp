@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <CGAL/box_intersection_d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace gr {
@@ -56,8 +57,14 @@ FacePairList keep_intersecting(const std::vector<FacePair>& candidates,
                                const std::function<bool(const FacePair&)>& intersects,
                                std::size_t max_listed) {
   std::vector<char> hit(candidates.size(), 0);
-  tbb::parallel_for(std::size_t(0), candidates.size(),
-                    [&](std::size_t i) { hit[i] = intersects(candidates[i]) ? 1 : 0; });
+  // Blocks of kGrain candidates: a short list (one moved region's pairs, checked thousands
+  // of times by the untangle) stays on the calling thread instead of waking the others.
+  constexpr std::size_t kGrain = 1024;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        hit[i] = intersects(candidates[i]) ? 1 : 0;
+                    });
   FacePairList result;
   for (std::size_t i = 0; i < candidates.size(); ++i)
     if (hit[i]) result.pairs.push_back(candidates[i]);
