@@ -273,21 +273,10 @@ class LocalCrossings {
     std::vector<int> local = region;
     std::vector<int> met_by(boxes_.size(), -1);  // the last moved face that met each face
     std::vector<FacePair> candidates;
-    // Moved against moved: swept along x, each box against those starting within it.
-    std::vector<int> by_low_x(static_cast<std::size_t>(moved_count));
-    std::iota(by_low_x.begin(), by_low_x.end(), 0);
-    const auto low_x = [&](int k) { return moved[static_cast<std::size_t>(k)].min().x(); };
-    std::sort(by_low_x.begin(), by_low_x.end(),
-              [&](int a, int b) { return low_x(a) != low_x(b) ? low_x(a) < low_x(b) : a < b; });
-    for (std::size_t i = 0; i < by_low_x.size(); ++i) {
-      const int k = by_low_x[i];
-      const Eigen::AlignedBox3d& b = moved[static_cast<std::size_t>(k)];
-      for (std::size_t n = i + 1; n < by_low_x.size() && low_x(by_low_x[n]) <= b.max().x(); ++n)
-        if (b.intersects(moved[static_cast<std::size_t>(by_low_x[n])]))
-          candidates.push_back({std::min(k, by_low_x[n]), std::max(k, by_low_x[n])});
-    }
     for (int k = 0; k < moved_count; ++k) {
       const Eigen::AlignedBox3d& b = moved[static_cast<std::size_t>(k)];
+      for (int j = k + 1; j < moved_count; ++j)
+        if (b.intersects(moved[static_cast<std::size_t>(j)])) candidates.push_back({k, j});
       for_cells(b, [&](const Cell& c) {
         const auto it = grid_.find(c);
         if (it == grid_.end()) return;
